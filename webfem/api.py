@@ -1,0 +1,58 @@
+"""Model dispatch: ``solve(case, model=...)`` and ``sweep(sweep, model=...)``."""
+
+from __future__ import annotations
+
+from typing import Callable, Iterator
+
+from .case import Case, CaseError, Sweep
+from .models import closed
+from .result import Result
+
+__all__ = ["MODELS", "solve", "sweep"]
+
+
+def _fe1d(case: Case, **options) -> Result:
+    from .models import fe1d
+    return fe1d.solve(case, **options)
+
+
+#: Model names accepted by :func:`solve`, ``--model`` and sweeps.
+MODELS: dict[str, Callable[..., Result]] = {"closed-form": closed.solve, "fe1d": _fe1d}
+
+
+def _model(name: str) -> Callable[..., Result]:
+    if name not in MODELS:
+        raise CaseError(f"model = {name!r} is not valid: must be one of "
+                        + ", ".join(repr(m) for m in MODELS))
+    return MODELS[name]
+
+
+def solve(case: Case, model: str = "closed-form", **options) -> Result:
+    """Solve one case with the named model (see :data:`MODELS`)."""
+    return _model(model)(case, **options)
+
+
+def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = None,
+          **options) -> Iterator[tuple[str, float, Result]]:
+    """Yield ``(series_label, value, result)`` over a sweep.
+
+    The closed form is evaluated for all points of a series at once; FE models solve point by
+    point, each started from the previous point's solution (continuation) where the model
+    accepts ``initial``.
+    """
+    points = list(spec.points())
+    if model == "closed-form":
+        results = closed.solve_many([c for _, _, c in points])
+        for i, ((label, value, _), res) in enumerate(zip(points, results)):
+            if progress:
+                progress(i + 1, len(points))
+            yield label, value, res
+        return
+    fn = _model(model)
+    previous: dict[str, Result] = {}
+    for i, (label, value, case) in enumerate(points):
+        res = fn(case, initial=previous.get(label), **options)
+        previous[label] = res
+        if progress:
+            progress(i + 1, len(points))
+        yield label, value, res

@@ -1,0 +1,1 @@
+"""Output: tables, charts and field files. Never solves."""

@@ -1,0 +1,1 @@
+"""Models: each offers ``solve(case, **options) -> Result``."""

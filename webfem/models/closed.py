@@ -1,0 +1,130 @@
+"""Closed-form model: the paper's Eq. 21 gap with its contact and friction model.
+
+The cheapest model in webfem (about a microsecond per operating point). Because the Eq. 21
+gap is linear along the wrap, the wrap-averaged friction is integrated exactly
+(:func:`webfem.physics.friction.wrap_average_linear_gap`), not by quadrature.
+
+Examples
+--------
+>>> from webfem import Case
+>>> r = solve(Case())
+>>> r["model"], r["regime"]
+('closed-form', 'boundary')
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..case import Case
+from ..physics import closed_form as cf
+from ..physics.contact import REGIMES, contact_gap
+from ..physics.friction import delta_T_from_mu, local_friction, wrap_average_linear_gap
+from ..result import Result
+
+__all__ = ["evaluate", "case_arrays", "solve", "solve_many", "NAME"]
+
+NAME = "closed-form"
+#: Points along the wrap in the fields of a single solve (for charts and VTU).
+N_FIELD_POINTS = 201
+
+
+def case_arrays(cases) -> dict[str, np.ndarray]:
+    """Stack cases into the keyword arrays :func:`evaluate` takes."""
+    get = {
+        "R": lambda c: c.roller.radius, "U_r": lambda c: c.roller.speed,
+        "U_w": lambda c: c.web.speed, "L": lambda c: c.web.width, "T": lambda c: c.web.tension,
+        "B": lambda c: c.B, "k": lambda c: c.web.permeability, "t": lambda c: c.web.thickness,
+        "eta": lambda c: c.air.viscosity, "E_b": lambda c: c.web.modulus_thickness,
+        "sigma": lambda c: c.sigma, "mu_cc": lambda c: c.friction.mu_cc,
+        "C": lambda c: c.friction.speed_constant,
+    }
+    return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
+
+
+def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper"):
+    """Closed-form gaps and traction at many operating points at once (arrays broadcast).
+
+    Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
+    ``h_center``, ``h_outlet``, ``h_min`` [m], ``mu``, ``delta_T`` [N/m], ``lambda``, ``beta``,
+    ``eq21_valid``, ``h_c`` [m], the regime shares and ``regime_code`` (index into
+    :data:`webfem.physics.contact.REGIMES`).
+    """
+    U = np.asarray(U_r, float) + U_w
+    U_s = np.abs(np.asarray(U_r, float) - U_w)
+    eps = cf.speed_parameter(eta, U, T)
+    lam = cf.width_parameter(L, R, eps)
+    beta = cf.wrap_parameter(B, eps)
+    kappa = cf.permeability_parameter(k, T, B, eta, t, R, U)
+    h_in = cf.gap_inlet(R, eps, lam)
+    h_out = h_in - 2.0 * R * kappa
+    avg = wrap_average_linear_gap(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
+                                  sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant)
+    shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
+    return {
+        "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
+        "h_outlet": np.maximum(h_out, 0.0), "h_min": np.maximum(h_out, 0.0),
+        "mu": avg["mu"], "delta_T": delta_T_from_mu(avg["mu"], T, B),
+        "lambda": lam, "beta": beta, "eq21_valid": cf.eq21_valid(beta, lam),
+        "eps": eps, "kappa": kappa, "h_c": contact_gap(T / R, E_b, sigma, t),
+        "share_boundary": avg["share_boundary"], "share_mixed": avg["share_mixed"],
+        "share_fluid": avg["share_fluid"], "regime_code": np.argmax(shares, axis=0),
+    }
+
+
+def _warnings(case: Case, summary: dict) -> list[str]:
+    out = []
+    if not summary["eq21_valid"]:
+        out.append(f"outside Eq. 21's stated range: beta = {summary['beta']:.3g} (needs > 6), "
+                   f"lambda = {summary['lambda']:.3g} (needs > 7); use an FE model")
+    if summary["h_c"] <= 0.0:
+        out.append(f"h_c = {summary['h_c']:.3g} m <= 0: asperity contact cannot carry "
+                   f"T/R = {case.p_bar:.4g} Pa (E_b sigma/(2 t) is smaller); mu may be infinite")
+    if summary["h_outlet"] <= 0.0:
+        out.append("Eq. 21 gap reaches 0 in the wrap: the web lands on the roller there "
+                   "(clamped h <= 0 -> 0)")
+    return out
+
+
+def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> dict:
+    """Summary dict (the JSON keys) of point ``i`` of :func:`evaluate`'s output."""
+    s = {key: (np.asarray(v)[i] if np.ndim(v) else v) for key, v in values.items()}
+    s = {k: (v.item() if hasattr(v, "item") else v) for k, v in s.items()}
+    s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=True,
+             iterations=0, n_dofs=0, residual=0.0, solve_time_s=elapsed,
+             sigma=case.sigma, U=case.U, U_slide=case.U_slide)
+    s["warnings"] = _warnings(case, s)
+    return s
+
+
+def solve(case: Case, n_points: int = N_FIELD_POINTS) -> Result:
+    """Closed-form solution of one case, with fields along the wrap for charts and VTU."""
+    t0 = time.perf_counter()
+    values = evaluate(**case_arrays([case]), variant=case.friction.variant)
+    elapsed = time.perf_counter() - t0
+    summary = summary_from_arrays(values, 0, case, elapsed)
+    R, B = case.roller.radius, case.B
+    x = np.linspace(-R * B / 2, R * B / 2, n_points)
+    h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
+    local = local_friction(h, R=R, T=case.web.tension, U_s=case.U_slide, eta=case.air.viscosity,
+                           E_b=case.web.modulus_thickness, sigma=case.sigma,
+                           t=case.web.thickness, mu_cc=case.friction.mu_cc,
+                           C=case.friction.speed_constant, variant=case.friction.variant)
+    fields = {"x": x, "h": h, **local}
+    return Result(case, summary, fields, {"method": "Eq. 21 + Eqs. 10-13, 28-31, exact average"})
+
+
+def solve_many(cases) -> list[Result]:
+    """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
+    cases = list(cases)
+    out: list[Result | None] = [None] * len(cases)
+    for variant in {c.friction.variant for c in cases}:
+        idx = [i for i, c in enumerate(cases) if c.friction.variant == variant]
+        t0 = time.perf_counter()
+        values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant)
+        elapsed = (time.perf_counter() - t0) / len(idx)
+        for j, i in enumerate(idx):
+            out[i] = Result(cases[i], summary_from_arrays(values, j, cases[i], elapsed))
+    return out  # type: ignore[return-value]
