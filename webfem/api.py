@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Callable, Iterator
 
 from .case import Case, CaseError, Sweep
+from .errors import ConvergenceError
 from .models import closed
 from .result import Result
 
@@ -37,8 +38,9 @@ def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = N
     """Yield ``(series_label, value, result)`` over a sweep.
 
     The closed form is evaluated for all points of a series at once; FE models solve point by
-    point, each started from the previous point's solution (continuation) where the model
-    accepts ``initial``.
+    point, each started from the previous converged point of its series (continuation). A
+    point that fails to converge is yielded with ``converged = False`` (its summary says why)
+    and the sweep goes on.
     """
     points = list(spec.points())
     if model == "closed-form":
@@ -51,8 +53,13 @@ def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = N
     fn = _model(model)
     previous: dict[str, Result] = {}
     for i, (label, value, case) in enumerate(points):
-        res = fn(case, initial=previous.get(label), **options)
-        previous[label] = res
+        try:
+            res = fn(case, initial=previous.get(label), **options)
+            previous[label] = res
+        except ConvergenceError as err:
+            # keep the point (marked converged = False) and go on from a cold start
+            res = err.result
+            previous.pop(label, None)
         if progress:
             progress(i + 1, len(points))
         yield label, value, res

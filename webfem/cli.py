@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 from .api import MODELS, solve, sweep
+from .errors import ConvergenceError
 from .case import CaseError, load_case, load_sweep, parse_assignment, valid_keys, Case
 
 __all__ = ["main"]
@@ -43,7 +44,13 @@ class _Progress:
 
 def _cmd_solve(args) -> int:
     case = load_case(args.case, _overrides(args.set))
-    result = solve(case, model=args.model)
+    try:
+        result = solve(case, model=args.model)
+    except ConvergenceError as err:
+        print(f"webfem: error: {err}", file=sys.stderr)
+        if args.json and err.result is not None:
+            print(json.dumps(err.result.to_json(), indent=2))
+        return 3
     if args.json:
         print(json.dumps(result.to_json(), indent=2))
     else:

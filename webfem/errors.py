@@ -1,0 +1,19 @@
+"""Errors webfem raises beyond input validation (:class:`webfem.case.CaseError`)."""
+
+from __future__ import annotations
+
+__all__ = ["ConvergenceError"]
+
+
+class ConvergenceError(RuntimeError):
+    """A solve did not meet its tolerance.
+
+    ``result`` is the last iterate as a :class:`webfem.result.Result` with
+    ``converged = False`` (for inspection only, never an answer) and ``history`` the
+    residual norms per iteration.
+    """
+
+    def __init__(self, message: str, result=None, history=None):
+        super().__init__(message)
+        self.result = result
+        self.history = list(history or [])

@@ -1,0 +1,121 @@
+"""Weak forms of the infinitely wide foil bearing with permeation and asperity contact.
+
+Scaled variables (Eshel-Elrod): X = x / (R eps^(1/3)), H = h / (R eps^(2/3)),
+P = (p - p_a) R / T. Unknowns: film pressure P and web deflection W; the gap is
+H = W + D(X) with the roller's departure D = (|X| - beta/2)^2 / 2 outside the wrap, 0 inside.
+
+Reynolds, compressible, with the Darcy sink through the web (physics.md, divided by p_a):
+
+    ((1 + d P) H^3 P')' = ((1 + d P) H)' + K (1 + d P) P,     P = 0 at both ends,
+
+d = T / (R p_a) (0 for the incompressible limit), K = 12 k / (R t eps^(4/3)).
+
+Web equilibrium (membrane with tension, beam with bending when Dn > 0):
+
+    P + Pc(H) = chi - W'' + Dn (H'''' ),   Pc = c exp(-H / S),   W = 0 at both ends,
+
+chi = 1 in the wrap (the T/R term) and 0 outside; Dn = D / (T (R eps^(1/3))^2);
+c = E_b sigma R / (2 t T) and S = sigma / (R eps^(2/3)) scale Eq. 10's contact pressure.
+Bending acts on the web's true curvature 1 - H'' (the web is flat when unloaded), which in the
+weak form is Dn (W'' - chi) v'': couples at the wrap edges, and the natural end condition
+W'' = 0 of Eq. 20.
+
+Weak residuals (test functions q for P, v for W; boundary terms vanish by the conditions):
+
+    F_p = int (1 + d P) H^3 P' q' - (1 + d P) H q' + K (1 + d P) P q
+    F_w = int W' v' + Dn (W'' - chi) v'' - (P + Pc(H) - chi) v
+
+and their exact Jacobian. The film uses max(H, H_floor) so that a landed web cannot make
+the film thickness vanish; with contact on, H stays well above the floor.
+
+The state enters the forms through :func:`coefficients`, evaluated once per assembly at the
+quadrature points and passed as keyword arguments of ``assemble``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from skfem import BilinearForm, LinearForm
+
+__all__ = ["coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
+
+
+def departure(x, beta):
+    """Scaled roller departure D(X) = (|X| - beta/2)^2 / 2 outside the wrap (Eq. 18)."""
+    out = np.maximum(np.abs(x) - 0.5 * beta, 0.0)
+    return 0.5 * out**2
+
+
+def in_wrap(x, beta):
+    """1 inside the wrap |X| < beta/2, 0 outside (the T/R term of Eq. 16)."""
+    return (np.abs(x) < 0.5 * beta).astype(float)
+
+
+def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
+    """Coefficient arrays of the residual and Jacobian at quadrature points.
+
+    Computed once per assembly (the forms below only multiply them with basis functions:
+    scikit-fem calls a form once per pair of basis functions). ``prm`` holds
+    ``beta, d, K, Dn, c, S, contact, floor``. ``sink=False`` leaves the Darcy sink out (it
+    is then assembled apart with nodal quadrature, :func:`sink_residual`).
+    """
+    H = W + departure(x, prm["beta"])
+    Hf = np.maximum(H, prm["floor"])
+    above = (H > prm["floor"]).astype(float)
+    d = prm["d"]
+    rho = 1.0 + d * P
+    chi = in_wrap(x, prm["beta"])
+    with np.errstate(over="ignore"):   # a wild line-search trial: inf, then rejected
+        Pc = prm["contact"] * prm["c"] * np.exp(-H / prm["S"])
+    Hf3 = Hf**3
+    return {
+        "flux": rho * Hf3 * dP - rho * Hf,          # F_p = flux q'
+        "load": P + Pc - chi,                       # F_w = W'v' + Dn (W'' - chi) v'' - load v
+        "chi": chi,
+        "a_p": d * Hf3 * dP - d * Hf,               # d flux / dP (through rho)
+        "a_dp": rho * Hf3,                          # d flux / dP'
+        "a_w": -above * rho,                        # d flux / dW (through the Couette flux)
+        "a_w3": above * 3.0 * rho * Hf**2 * dP,     # d flux / dW (through H^3)
+        "k_c": Pc / prm["S"],                       # -d load / dW (contact stiffness)
+        "sink": prm["K"] * rho * P if sink else 0.0,           # F_p += sink q
+        "a_sink": prm["K"] * rho if sink else 0.0,
+        "a_sink_p": prm["K"] * d * P if sink else 0.0,
+    }
+
+
+@LinearForm
+def residual(q, v, w):
+    """F_p(q) + F_w(v) at the state whose :func:`coefficients` and ``W`` are in ``w``."""
+    W = w["W"]
+    return (w["flux"] * q.grad[0] + w["sink"] * q + W.grad[0] * v.grad[0]
+            + w["Dn"] * (W.hess[0, 0] - w["chi"]) * v.hess[0, 0] - w["load"] * v)
+
+
+@BilinearForm
+def jacobian(dp, dw, q, v, w):
+    """Exact derivative of :func:`residual` in the direction (dp, dw) when ``w['newton']``
+    is 1; when 0, the Picard operator: the film's coefficients rho = 1 + d P and H^3 frozen
+    at the current state (the asperity contact stays linearised: it is local and stiff)."""
+    nt = w["newton"]
+    return ((nt * w["a_p"] * dp + w["a_dp"] * dp.grad[0] + (w["a_w"] + nt * w["a_w3"]) * dw)
+            * q.grad[0] + (w["a_sink"] + nt * w["a_sink_p"]) * dp * q
+            + dw.grad[0] * v.grad[0] + w["Dn"] * dw.hess[0, 0] * v.hess[0, 0]
+            + w["k_c"] * dw * v - dp * v)
+
+
+@LinearForm
+def sink_residual(q, v, w):
+    """The Darcy sink K (1 + d P) P q of F_p, kept apart so it can be lumped (nodal quadrature).
+
+    With P1 pressure and nodal quadrature the film operator for a given gap is an M-matrix,
+    so the pressure cannot oscillate where the film is thin and the sink dominates (a landed
+    web: reaction-to-diffusion ratio K dx^2 / H^3 of order 100 at 10 m/s on newsprint).
+    """
+    P = w["P"]
+    return w["K"] * (1.0 + w["d"] * P) * P * q
+
+
+@BilinearForm
+def sink_jacobian(dp, dw, q, v, w):
+    """Derivative of :func:`sink_residual` (Picard, ``newton = 0``: rho frozen)."""
+    return w["K"] * (1.0 + (1.0 + w["newton"]) * w["d"] * w["P"]) * dp * q
