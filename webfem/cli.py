@@ -70,8 +70,13 @@ def _cmd_sweep(args) -> int:
     rows = sweep_rows(points, spec.parameter)
     stem = Path(args.case).stem
     csv_path = write_csv(rows, out / f"{stem}_{args.model}.csv")
+    reference = None
+    if args.model != "closed-form":  # the paper's model beside the field solution
+        reference = sweep_rows(sweep(spec, model="closed-form"), spec.parameter)
     png_path = sweep_chart(rows, out / f"{stem}_{args.model}.png",
-                           title=f"{stem}: {args.model}")
+                           title=f"{stem}: {args.model}"
+                           + (" (thin: closed form, Eq. 21)" if reference else ""),
+                           reference=reference)
     print(f"wrote {csv_path}\nwrote {png_path}")
     failed = [r for r in rows if not r["converged"]]
     if failed:

@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 from skfem import BilinearForm, LinearForm
 
-__all__ = ["coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
+__all__ = ["coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
 
 
 def departure(x, beta):
@@ -91,16 +91,25 @@ def residual(q, v, w):
             + w["Dn"] * (W.hess[0, 0] - w["chi"]) * v.hess[0, 0] - w["load"] * v)
 
 
+def jacobian_coefficients(coef: dict, newton: bool = True) -> dict:
+    """The arrays :func:`jacobian` multiplies, from :func:`coefficients`.
+
+    ``newton=True``: the exact derivative. ``newton=False``: the Picard operator, with the
+    film's coefficients rho = 1 + d P and H^3 frozen at the current state (the asperity
+    contact stays linearised: it is local and stiff).
+    """
+    nt = 1.0 if newton else 0.0
+    return {"j_p": nt * coef["a_p"], "j_dp": coef["a_dp"], "j_w": coef["a_w"] + nt * coef["a_w3"],
+            "j_sink": coef["a_sink"] + nt * coef["a_sink_p"], "k_c": coef["k_c"]}
+
+
 @BilinearForm
 def jacobian(dp, dw, q, v, w):
-    """Exact derivative of :func:`residual` in the direction (dp, dw) when ``w['newton']``
-    is 1; when 0, the Picard operator: the film's coefficients rho = 1 + d P and H^3 frozen
-    at the current state (the asperity contact stays linearised: it is local and stiff)."""
-    nt = w["newton"]
-    return ((nt * w["a_p"] * dp + w["a_dp"] * dp.grad[0] + (w["a_w"] + nt * w["a_w3"]) * dw)
-            * q.grad[0] + (w["a_sink"] + nt * w["a_sink_p"]) * dp * q
-            + dw.grad[0] * v.grad[0] + w["Dn"] * dw.hess[0, 0] * v.hess[0, 0]
-            + w["k_c"] * dw * v - dp * v)
+    """Derivative of :func:`residual` in the direction (dp, dw), with the coefficient arrays
+    of :func:`jacobian_coefficients` (exact, or Picard's frozen-coefficient operator)."""
+    return ((w["j_p"] * dp + w["j_dp"] * dp.grad[0] + w["j_w"] * dw) * q.grad[0]
+            + w["j_sink"] * dp * q + dw.grad[0] * v.grad[0]
+            + w["Dn"] * dw.hess[0, 0] * v.hess[0, 0] + w["k_c"] * dw * v - dp * v)
 
 
 @LinearForm
