@@ -185,3 +185,12 @@ def test_sweep_continuation(tmp_path):
     cold = fe1d.solve(Case().updated({"roller.speed": 40.0}))
     assert out[-1][2]["iterations"] < cold["iterations"]
     assert out[-1][2]["h_center"] == pytest.approx(cold["h_center"], rel=1e-6)
+
+
+def test_cli_model_options(capsys):
+    assert main(["solve", "cases/base.toml", "--model", "fe1d", "--json", "--set",
+                 "roller.speed=40", "--opt", "method=picard", "--opt", "level=1"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["method"] == "picard" and data["converged"]
+    assert main(["solve", "cases/base.toml", "--opt", "level=1"]) == 2
+    assert "takes no options" in capsys.readouterr().err

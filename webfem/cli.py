@@ -13,13 +13,29 @@ from pathlib import Path
 
 from .api import MODELS, solve, sweep
 from .errors import ConvergenceError
-from .case import CaseError, load_case, load_sweep, parse_assignment, valid_keys, Case
+from .case import CaseError, load_case, load_sweep, parse_assignment, Case
 
 __all__ = ["main"]
 
 
 def _overrides(pairs) -> dict:
     return dict(parse_assignment(p) for p in pairs or [])
+
+
+def _options(pairs) -> dict:
+    """``--opt level=2 --opt method=picard`` -> model options (values in TOML syntax)."""
+    import tomllib
+
+    out = {}
+    for text in pairs or []:
+        if "=" not in text:
+            raise CaseError(f"--opt {text!r}: expected key=value, e.g. --opt level=2")
+        key, raw = (t.strip() for t in text.split("=", 1))
+        try:
+            out[key] = tomllib.loads(f"v = {raw}")["v"]
+        except tomllib.TOMLDecodeError:
+            out[key] = raw
+    return out
 
 
 class _Progress:
@@ -45,7 +61,7 @@ class _Progress:
 def _cmd_solve(args) -> int:
     case = load_case(args.case, _overrides(args.set))
     try:
-        result = solve(case, model=args.model)
+        result = solve(case, model=args.model, **_options(args.opt))
     except ConvergenceError as err:
         print(f"webfem: error: {err}", file=sys.stderr)
         if args.json and err.result is not None:
@@ -66,7 +82,8 @@ def _cmd_sweep(args) -> int:
     out = Path(args.out)
     print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
           f"{len(spec.values)} values x {len(spec.series)} series", file=sys.stderr)
-    points = list(sweep(spec, model=args.model, progress=None if args.quiet else _Progress()))
+    points = list(sweep(spec, model=args.model, progress=None if args.quiet else _Progress(),
+                        **_options(args.opt)))
     rows = sweep_rows(points, spec.parameter)
     stem = Path(args.case).stem
     csv_path = write_csv(rows, out / f"{stem}_{args.model}.csv")
@@ -116,6 +133,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="override a case value, e.g. --set roller.speed=30 (repeatable)")
         p.add_argument("--model", default="closed-form", choices=sorted(MODELS),
                        help="model to use (default: closed-form, the paper's Eq. 21)")
+        p.add_argument("--opt", action="append", metavar="KEY=VALUE",
+                       help="model option, e.g. --opt method=picard --opt level=2 (fe1d: "
+                            "entry, level, order, compressible, contact, method, tol, max_iter, "
+                            "omega, aitken, adapt; see webfem.models.fe1d.solve)")
 
     p = sub.add_parser("solve", help="solve one operating point and print a summary")
     common(p)

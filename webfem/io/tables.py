@@ -7,7 +7,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..result import SUMMARY_KEYS, Result
+from ..result import SUMMARY_KEYS
 
 __all__ = ["sweep_rows", "write_csv", "read_csv"]
 

@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from ..case import Case
+from ..case import Case, CaseError
 from ..physics import closed_form as cf
 from ..physics.contact import REGIMES, contact_gap
 from ..physics.friction import delta_T_from_mu, local_friction, wrap_average_linear_gap
@@ -99,8 +99,12 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> dic
     return s
 
 
-def solve(case: Case, n_points: int = N_FIELD_POINTS) -> Result:
-    """Closed-form solution of one case, with fields along the wrap for charts and VTU."""
+def solve(case: Case, n_points: int = N_FIELD_POINTS, **options) -> Result:
+    """Closed-form solution of one case, with fields along the wrap for charts and VTU.
+
+    Takes no solver options; any given (e.g. ``level``) is an error naming them."""
+    if options:
+        raise CaseError(f"the closed-form model takes no options, got {sorted(options)}")
     t0 = time.perf_counter()
     values = evaluate(**case_arrays([case]), variant=case.friction.variant)
     elapsed = time.perf_counter() - t0
