@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 OUT ?= out
 
-.PHONY: run test test-slow bench clean
+.PHONY: run test test-slow bench clean meshes
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -13,14 +13,18 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-# main job: the base case with the most complete model (1-D FE for now), then the speed
-# sweep with the FE model beside the paper's closed form
+# main job: the base case with the most complete model (2-D film + 1-D web) with its VTU
+# files and pictures, then the speed sweep with the 1-D FE model beside the closed form
 run: $(STAMP)
 	mkdir -p $(OUT)/base
-	$(VENV)/bin/webfem solve cases/base.toml --model fe1d --json > $(OUT)/base/solve.json
-	$(VENV)/bin/webfem solve cases/base.toml --model fe1d
+	$(VENV)/bin/webfem solve cases/base.toml --model fe2d --json --vtu $(OUT)/base --plot > $(OUT)/base/solve.json
+	$(VENV)/bin/webfem solve cases/base.toml --model fe2d
 	$(VENV)/bin/webfem sweep cases/base.toml --out $(OUT)/base
 	$(VENV)/bin/webfem sweep cases/base.toml --model fe1d --out $(OUT)/base
+
+# the stored meshes of meshes/ (what the FE models start from for the cases)
+meshes: $(STAMP)
+	for c in cases/*.toml; do $(VENV)/bin/webfem mesh $$c --out meshes; done
 
 test: $(STAMP)
 	$(PY) -m pytest -q

@@ -17,8 +17,14 @@ def _fe1d(case: Case, **options) -> Result:
     return fe1d.solve(case, **options)
 
 
+def _fe2d(case: Case, **options) -> Result:
+    from .models import fe2d
+    return fe2d.solve(case, **options)
+
+
 #: Model names accepted by :func:`solve`, ``--model`` and sweeps.
-MODELS: dict[str, Callable[..., Result]] = {"closed-form": closed.solve, "fe1d": _fe1d}
+MODELS: dict[str, Callable[..., Result]] = {"closed-form": closed.solve, "fe1d": _fe1d,
+                                            "fe2d": _fe2d}
 
 
 def _model(name: str) -> Callable[..., Result]:

@@ -60,18 +60,31 @@ class _Progress:
 
 def _cmd_solve(args) -> int:
     case = load_case(args.case, _overrides(args.set))
+    stem = f"{Path(args.case).stem}_{args.model}"
     try:
         result = solve(case, model=args.model, **_options(args.opt))
     except ConvergenceError as err:
         print(f"webfem: error: {err}", file=sys.stderr)
-        if args.json and err.result is not None:
-            print(json.dumps(err.result.to_json(), indent=2))
+        if err.result is not None:
+            if args.json:
+                print(json.dumps(err.result.to_json(), indent=2))
+            if args.vtu:   # the last iterate, for inspection, marked in its file names
+                for path in err.result.save_vtu(args.vtu, stem):
+                    print(f"wrote {path} (NOT converged)", file=sys.stderr)
         return 3
     if args.json:
         print(json.dumps(result.to_json(), indent=2))
     else:
         print(result.describe())
-    return 0 if result["converged"] else 3
+    written = []
+    if args.vtu:
+        written += result.save_vtu(args.vtu, stem)
+    if args.plot:
+        from .io.pictures import film_pictures
+        written += film_pictures(result, args.vtu or ".", stem)
+    for path in written:
+        print(f"wrote {path}", file=sys.stderr)
+    return 0
 
 
 def _cmd_sweep(args) -> int:
@@ -86,6 +99,20 @@ def _cmd_sweep(args) -> int:
                         **_options(args.opt)))
     rows = sweep_rows(points, spec.parameter)
     stem = Path(args.case).stem
+    if args.vtu:
+        from .io.vtu import write_pvd
+        for label in dict.fromkeys(lab for lab, _, _ in points):
+            tag = "".join(ch if ch.isalnum() else "_" for ch in label).strip("_")
+            entries = {"web": [], "film": []}
+            for lab, value, res in points:
+                if lab != label:
+                    continue
+                for path in res.save_vtu(args.vtu, f"{stem}_{args.model}_{tag}_{value:g}"):
+                    entries["film" if path.stem.endswith("_film") else "web"].append((value, path))
+            for part, items in entries.items():
+                if items:
+                    pvd = write_pvd(items, Path(args.vtu) / f"{stem}_{args.model}_{tag}_{part}.pvd")
+                    print(f"wrote {pvd}")
     csv_path = write_csv(rows, out / f"{stem}_{args.model}.csv")
     reference = None
     if args.model != "closed-form":  # the paper's model beside the field solution
@@ -100,6 +127,37 @@ def _cmd_sweep(args) -> int:
         print(f"webfem: {len(failed)} of {len(rows)} points did not converge (see the CSV)",
               file=sys.stderr)
         return 3
+    return 0
+
+
+def _cmd_mesh(args) -> int:
+    """Export the graded meshes a model starts from (before refinement where the film is thin)."""
+    import meshio
+    import numpy as np
+
+    from .fem.mesh import graded_nodes
+    from .fem.transfer import width_nodes
+
+    case = load_case(args.case, _overrides(args.set))
+    opts = _options(args.opt)
+    X = graded_nodes(case.beta, float(opts.get("entry", 40.0)), level=int(opts.get("level", 0)))
+    Z = width_nodes(case.lam, int(opts.get("level", 0)), half=bool(opts.get("symmetry", True)),
+                    fine=float(opts.get("width_fine", 0.25)))
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    stem = Path(args.case).stem
+    x = X * case.x_scale
+    line = meshio.Mesh(np.column_stack([x, 0 * x, 0 * x]),
+                       [("line", np.column_stack([np.arange(x.size - 1), np.arange(1, x.size)]))])
+    xx, zz = np.meshgrid(X, Z, indexing="ij")
+    idx = np.arange(X.size * Z.size).reshape(X.size, Z.size)
+    quads = np.column_stack([idx[:-1, :-1].ravel(), idx[1:, :-1].ravel(), idx[1:, 1:].ravel(),
+                             idx[:-1, 1:].ravel()])
+    pts = np.column_stack([xx.ravel(), zz.ravel(), 0 * xx.ravel()]) * case.x_scale
+    film = meshio.Mesh(pts, [("quad", quads)])
+    for mesh, name in ((line, f"{stem}_web.vtu"), (film, f"{stem}_film.vtu")):
+        meshio.write(out / name, mesh)
+        print(f"wrote {out / name}")
     return 0
 
 
@@ -140,6 +198,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("solve", help="solve one operating point and print a summary")
     common(p)
+    p.add_argument("--vtu", metavar="DIR",
+                   help="write VTU files of the web (and film, fe2d) into DIR for ParaView")
+    p.add_argument("--plot", action="store_true",
+                   help="render PNG pictures of p and h of the film (fe2d) with pyvista, into "
+                        "the --vtu DIR (or the current folder)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys: model, h_center, h_inlet, h_outlet, h_min, "
                         "mu, delta_T, regime, lambda, beta, eq21_valid, converged, iterations, "
@@ -150,7 +213,15 @@ def build_parser() -> argparse.ArgumentParser:
     common(p)
     p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv and .png")
     p.add_argument("--quiet", action="store_true", help="no progress line")
+    p.add_argument("--vtu", metavar="DIR",
+                   help="also write VTU files per point and a .pvd collection per series")
     p.set_defaults(func=_cmd_sweep)
+
+    p = sub.add_parser("mesh", help="write the graded web and film meshes of a case (VTU, "
+                                    "metres) as the FE models start from them")
+    common(p)
+    p.add_argument("--out", required=True, help="output folder")
+    p.set_defaults(func=_cmd_mesh)
 
     p = sub.add_parser("keys", help="list the case TOML keys with units and defaults")
     p.set_defaults(func=_cmd_keys)

@@ -70,12 +70,20 @@ class Result:
         Fields along the web: ``x`` [m] and ``h`` [m] at least, ``mu``, ``chi_c`` ...
     diagnostics : dict
         Solver history and settings (free form).
+    film : dict or None
+        2-D models: the film mesh (``points`` [m], ``quads``) and its vertex fields.
     """
 
     case: Case
     summary: dict[str, Any]
     fields: dict[str, np.ndarray] = field(default_factory=dict)
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    film: dict[str, np.ndarray] | None = None
+
+    def save_vtu(self, folder, stem: str | None = None) -> list:
+        """Write the web (and, for 2-D models, the film) as VTU files; returns the paths."""
+        from .io.vtu import write_result
+        return write_result(self, folder, stem)
 
     def __post_init__(self):
         missing = [k for k in SUMMARY_KEYS if k not in self.summary]

@@ -375,17 +375,24 @@ def _minimum(problem: FoilBearing1D, u, prm):
     return float(Hs[j]), float(Xs[j])
 
 
-def _summary(case: Case, problem: FoilBearing1D, u, prm: FoilParameters, info: dict,
-             elapsed: float, opts: dict) -> tuple[dict, dict]:
+def _local(case: Case, h):
+    """The paper's local contact and friction (Eqs. 10-13, 28-30) at gaps h [m]."""
+    return local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
+                          eta=case.air.viscosity, E_b=case.web.modulus_thickness,
+                          sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
+                          C=case.friction.speed_constant, variant=case.friction.variant)
+
+
+def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: float,
+             opts: dict, model: str = NAME, mesh: str | None = None) -> tuple[dict, dict]:
+    """Summary keys and diagnostics from a solved state. ``problem`` needs ``X``, ``n_dofs``,
+    ``gap(u, prm, X)`` and ``pressure(u, X)`` (the width-averaged film pressure in 2-D)."""
     Hs, Xs = case.h_scale, case.x_scale
     R, T = case.roller.radius, case.web.tension
     e = 0.5 * prm.beta
     pts, wts = _wrap_samples(problem.X, prm.beta)
     h = problem.gap(u, prm, pts) * Hs
-    loc = local_friction(h, R=R, T=T, U_s=case.U_slide, eta=case.air.viscosity,
-                         E_b=case.web.modulus_thickness, sigma=case.sigma,
-                         t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                         C=case.friction.speed_constant, variant=case.friction.variant)
+    loc = _local(case, h)
     mu = float(np.sum(loc["mu"] * wts) / prm.beta)
     shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
     Pf = problem.pressure(u, pts)
@@ -394,7 +401,7 @@ def _summary(case: Case, problem: FoilBearing1D, u, prm: FoilParameters, info: d
     Hmin, Xmin = _minimum(problem, u, prm)
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
     summary = {
-        "model": NAME,
+        "model": model,
         "h_center": H3[0] * Hs, "h_inlet": H3[1] * Hs, "h_outlet": H3[2] * Hs,
         "h_min": Hmin * Hs, "x_min": Xmin * Xs,
         "mu": mu, "delta_T": float(delta_T_from_mu(mu, T, case.B)),
@@ -409,13 +416,14 @@ def _summary(case: Case, problem: FoilBearing1D, u, prm: FoilParameters, info: d
         "contact_share": contact_share,
         "eps": case.eps, "kappa": case.kappa, "U": case.U, "U_slide": case.U_slide,
         "method": opts["method"], "n_cells": len(problem.X) - 1,
-        "mesh": f"graded line, {len(problem.X) - 1} cells, entry/exit {opts['entry']:g} "
-                f"R eps^(1/3), level {opts['level']}, P{opts['order']}/Hermite",
+        "mesh": mesh or f"graded line, {len(problem.X) - 1} cells, entry/exit "
+                        f"{opts['entry']:g} R eps^(1/3), level {opts['level']}, "
+                        f"P{opts['order']}/Hermite",
         "warnings": [],
     }
     if not opts["compressible"]:
         summary["warnings"].append("incompressible film (compressible=False)")
-    if case.lam < 7.0:
+    if case.lam < 7.0 and model == NAME:
         summary["warnings"].append(
             f"lambda = {case.lam:.3g}: a narrow web leaks air at its edges, which the 1-D "
             "(infinitely wide) model ignores; its gap is too large")
@@ -435,10 +443,7 @@ def _node_fields(case: Case, problem: FoilBearing1D, u, prm: FoilParameters) -> 
     H = problem.gap(u, prm, X)
     P = problem.pressure(u, X)
     h = H * Hs
-    loc = local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
-                         eta=case.air.viscosity, E_b=case.web.modulus_thickness,
-                         sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                         C=case.friction.speed_constant, variant=case.friction.variant)
+    loc = _local(case, h)
     p_rel = P * case.p_bar
     return {"x": X * case.x_scale, "h": h, "w": h - forms.departure(X, prm.beta) * Hs,
             "p_rel": p_rel, "p": p_rel + case.air.ambient_pressure,
@@ -508,6 +513,7 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     summary, diagnostics = _summary(case, problem, u, prm, info, elapsed, opts)
     fields = _node_fields(case, problem, u, prm)
     diagnostics["state"] = u
+    diagnostics["problem"] = problem
     result = Result(case, summary, fields, diagnostics)
     if not info["converged"] and raise_on_failure:
         raise ConvergenceError(f"fe1d ({opts['method']}) did not converge: {info['reason']} "

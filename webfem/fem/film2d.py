@@ -1,0 +1,66 @@
+"""Weak forms of the 2-D film: Reynolds over the wrap domain with edge leakage and the sink.
+
+Scaled as in :mod:`webfem.fem.forms`, with Z = z / (R eps^(1/3)) across the width (the same
+scale as X, so the operator stays isotropic; the web edges sit at Z = +-lambda):
+
+    div((1 + d P) H^3 grad P) = d((1 + d P) H)/dX + K (1 + d P) P,
+
+P = 0 on the ends X = X_s, X_e and on the web edges (paper's Eq. 19); with the half width
+Z in [0, lambda], dP/dZ = 0 at Z = 0 (symmetry, natural). The gap H(X) comes from the 1-D
+web. Weak residual with test function q:
+
+    F_p = int (1 + d P) H^3 grad P . grad q - (1 + d P) H q_X + K (1 + d P) P q.
+
+The forms take coefficient arrays at quadrature points (:func:`film_coefficients`), computed
+once per assembly. The derivative with respect to the web goes through the transfer matrices
+of :mod:`webfem.fem.transfer`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from skfem import BilinearForm, LinearForm
+
+__all__ = ["film_coefficients", "film_residual", "film_jacobian"]
+
+
+def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
+    """Arrays for :func:`film_residual` / :func:`film_jacobian` and the web coupling.
+
+    ``H`` is the gap at the quadrature points (floored at ``prm['floor']``), ``P, PX, PZ`` the
+    pressure and its gradient there. ``newton=False`` freezes rho = 1 + d P and H^3 (Picard).
+    """
+    d, K = prm["d"], prm["K"]
+    above = (H > prm["floor"]).astype(float)
+    Hf = np.maximum(H, prm["floor"])
+    rho = 1.0 + d * P
+    Hf3 = Hf**3
+    nt = 1.0 if newton else 0.0
+    return {
+        "D": rho * Hf3,                       # diffusion coefficient
+        "C": rho * Hf,                        # Couette flux
+        "S": K * rho * P,                     # sink
+        # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 d P) dp
+        "jD": rho * Hf3,
+        "jX": nt * (d * Hf3 * PX - d * Hf),
+        "jZ": nt * d * Hf3 * PZ,
+        "jS": K * (rho + nt * d * P),
+        # dF/dH (to the web): (3 rho H^2 grad P) . grad q - rho q_X
+        "hX": above * (nt * 3.0 * rho * Hf**2 * PX - rho),
+        "hZ": above * nt * 3.0 * rho * Hf**2 * PZ,
+    }
+
+
+@LinearForm
+def film_residual(q, w):
+    """F_p at the state whose coefficients and pressure field ``P`` are in ``w``."""
+    P = w["P"]
+    return (w["D"] * (P.grad[0] * q.grad[0] + P.grad[1] * q.grad[1]) - w["C"] * q.grad[0]
+            + w["S"] * q)
+
+
+@BilinearForm
+def film_jacobian(dp, q, w):
+    """dF_p/dP (exact, or Picard's frozen-coefficient operator)."""
+    return (w["jD"] * (dp.grad[0] * q.grad[0] + dp.grad[1] * q.grad[1])
+            + dp * (w["jX"] * q.grad[0] + w["jZ"] * q.grad[1]) + w["jS"] * dp * q)

@@ -1,0 +1,334 @@
+"""2-D finite elements: Reynolds over the wrap domain with edge leakage, coupled to the 1-D web.
+
+The film is solved on [X_s, X_e] x [0, lambda] (half width, symmetry at the centreline; the
+default) or [-lambda, lambda] (full width) in scaled coordinates (:mod:`webfem.fem.film2d`),
+with P2 quadrilaterals (Q1 on request) on a tensor-product mesh: the web's graded nodes in X
+times nodes graded towards the web edges in Z. The web is the 1-D Hermite beam/membrane of the
+1-D model (:mod:`webfem.fem.web`), loaded by the width-averaged film pressure plus the asperity
+contact (paper's Eq. 16). The two meshes share their X nodes and the web's basis is evaluated
+exactly at the film's quadrature points (:mod:`webfem.fem.transfer`), so the gap on the film and
+the width average on the web are consistent discretisations, not nearest-node lookups.
+
+Coupling: Newton on the whole film + web system with the exact Jacobian (default), started
+from the 1-D solution (the lambda -> infinity limit); or Picard with the film's coefficients
+frozen (relaxed, Aitken). The X mesh is refined where the film is thin, as in 1-D.
+
+Examples
+--------
+>>> from webfem import Case
+>>> r = solve(Case().updated({"roller.speed": 40.0}))
+>>> r["model"], r["converged"]
+('fe2d', True)
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
+
+from ..case import Case, CaseError
+from ..errors import ConvergenceError
+from ..fem import forms
+from ..fem.film2d import film_coefficients, film_jacobian, film_residual
+from ..fem.mesh import line_mesh, refine_nodes
+from ..fem.newton import newton
+from ..fem.picard import picard
+from ..fem.transfer import film_mesh, quadrature_matrices, width_nodes
+from ..fem.web import web_coefficients, web_jacobian, web_residual
+from ..result import Result
+from . import fe1d
+from .fe1d import FoilParameters
+
+__all__ = ["FoilBearing2D", "solve", "NAME", "DEFAULTS"]
+
+NAME = "fe2d"
+METHODS = ("newton", "picard")
+
+#: Default discretisation and solver settings (see :func:`solve`).
+DEFAULTS = dict(entry=40.0, level=0, order=2, width_fine=0.25, symmetry=True,
+                compressible=True, contact=True, method="newton", tol=1e-9, max_iter=40,
+                omega=1.0, aitken=True, picard_max_iter=500, floor=1e-3, adapt=6,
+                adapt_ratio=1.0, min_cell=2e-3)
+
+
+class FoilBearing2D:
+    """The discrete coupled problem: film basis on the 2-D mesh, web basis on the line.
+
+    Unknowns ``u = [p (film DOFs), w (web DOFs)]``. Built once per mesh.
+    """
+
+    def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2):
+        if order not in (1, 2):
+            raise CaseError(f"order = {order!r} is not valid: must be 1 or 2")
+        self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
+        self.width = float(self.Z[-1] - self.Z[0])
+        self.order = order
+        self.line = line_mesh(self.X)
+        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
+        self.wbasis = Basis(self.line, ElementLineHermite(), intorder=6)
+        self.mesh = film_mesh(self.X, self.Z)
+        self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
+                            intorder=4 if order == 2 else 3)
+        self.T = quadrature_matrices(self.fbasis, self.wbasis)
+        self.nP, self.nW = self.fbasis.N, self.wbasis.N
+        self.qshape = self.fbasis.X.shape[-1]
+        fixed_p = self.fbasis.get_dofs({"ends", "edges"}).all()
+        fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
+        self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
+        self.free = np.setdiff1d(np.arange(self.n_dofs), self.fixed)
+        self._xw = np.asarray(self.wbasis.global_coordinates()[0])
+        self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
+        self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
+        self._mass = None
+
+    @property
+    def n_dofs(self) -> int:
+        return self.nP + self.nW
+
+    def _split(self, u):
+        return u[:self.nP], u[self.nP:]
+
+    def _film_state(self, u, prm):
+        p, w = self._split(u)
+        T = self.T
+        H = (T["M"] @ w + forms.departure(T["x"], prm.beta)).reshape(-1, self.qshape)
+        P = self.fbasis.interpolate(p)
+        return P, H
+
+    def residual(self, u, prm: FoilParameters) -> np.ndarray:
+        p, w = self._split(u)
+        P, H = self._film_state(u, prm)
+        args = prm.as_form_args()
+        coef = film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], args)
+        Fp = film_residual.assemble(self.fbasis, P=P, **coef)
+        W = self.wbasis.interpolate(w)
+        Fw = web_residual.assemble(self.wbasis, W=W, Dn=prm.Dn,
+                                   **web_coefficients(self._xw, np.asarray(W), args))
+        Pq = np.asarray(P).ravel()
+        Fw -= self.T["M"].T @ (self.T["dx"] * Pq) / self.width
+        return np.concatenate([Fp, Fw])
+
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True):
+        p, w = self._split(u)
+        P, H = self._film_state(u, prm)
+        args = prm.as_form_args()
+        coef = film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], args, newton)
+        T = self.T
+        Jpp = film_jacobian.assemble(self.fbasis, **coef)
+        dx = T["dx"]
+        Jpw = (T["BX"].T @ sp.diags(coef["hX"].ravel() * dx) @ T["M"]
+               + T["BZ"].T @ sp.diags(coef["hZ"].ravel() * dx) @ T["M"])
+        W = self.wbasis.interpolate(w)
+        Jww = web_jacobian.assemble(self.wbasis, Dn=prm.Dn,
+                                    **web_coefficients(self._xw, np.asarray(W), args))
+        Jwp = -(T["M"].T @ sp.diags(dx) @ T["B0"]) / self.width
+        return sp.bmat([[Jpp, Jpw], [Jwp, Jww]], format="csr")
+
+    # -- fields ---------------------------------------------------------------------------
+    def gap(self, u, prm, X) -> np.ndarray:
+        X = np.asarray(X, float)
+        return self.wbasis.probes(X[None, :]) @ self._split(u)[1] + forms.departure(X, prm.beta)
+
+    def width_average(self, u) -> np.ndarray:
+        """Hermite DOFs of the width-averaged film pressure: the L2 projection of
+        (1/width) int P dZ onto the web's space (the same load vector the web sees)."""
+        if self._mass is None:
+            from skfem import BilinearForm
+
+            @BilinearForm
+            def mass(a, b, w):
+                return a * b
+
+            self._mass = spla.splu(mass.assemble(self.wbasis).tocsc())
+        Pq = np.asarray(self.fbasis.interpolate(self._split(u)[0])).ravel()
+        return self._mass.solve(self.T["M"].T @ (self.T["dx"] * Pq) / self.width)
+
+    def pressure(self, u, X) -> np.ndarray:
+        """Width-averaged film pressure at X (through :meth:`width_average`)."""
+        X = np.asarray(X, float)
+        return self.wbasis.probes(X[None, :]) @ self.width_average(u)
+
+    def vertex_grid(self, u) -> np.ndarray:
+        """Film pressure at the tensor grid of vertices, shape (len(X), len(Z))."""
+        p = self.mesh.p
+        i = np.searchsorted(self.X, p[0] - 1e-12 * (1 + abs(p[0])))
+        j = np.searchsorted(self.Z, p[1] - 1e-12 * (1 + abs(p[1])))
+        grid = np.zeros((self.X.size, self.Z.size))
+        grid[np.clip(i, 0, self.X.size - 1), np.clip(j, 0, self.Z.size - 1)] = \
+            self.film_pressure_at_vertices(u)
+        return grid
+
+    def film_pressure_at_vertices(self, u) -> np.ndarray:
+        """Film pressure at the mesh vertices (for VTU)."""
+        return self._split(u)[0][self.fbasis.nodal_dofs[0]]
+
+    # -- starts and solvers ---------------------------------------------------------------
+    def start_from_line(self, problem1d, u1d, prm) -> np.ndarray:
+        """The 1-D (infinitely wide) solution as a start: its web, and its pressure shaped
+        across the width like 1 - (Z/lambda)^2 scaled to the same width average."""
+        u = np.zeros(self.n_dofs)
+        xn = self.X
+        Hn = problem1d.gap(u1d, prm, xn)
+        u[self.iWv] = Hn - forms.departure(xn, prm.beta)
+        d = 1e-6
+        xa, xb = np.clip(xn - d, xn[0], xn[-1]), np.clip(xn + d, xn[0], xn[-1])
+        u[self.iWx] = ((problem1d.gap(u1d, prm, xb) - forms.departure(xb, prm.beta))
+                       - (problem1d.gap(u1d, prm, xa) - forms.departure(xa, prm.beta))) / (xb - xa)
+        loc = self.fbasis.doflocs
+        lam = max(abs(self.Z[0]), abs(self.Z[-1]))
+        u[:self.nP] = problem1d.pressure(u1d, loc[0]) * 1.5 * (1.0 - (loc[1] / lam) ** 2)
+        u[self.fixed] = 0.0
+        return u
+
+    def _newton(self, u0, prm, tol, max_iter, rows=None):
+        return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
+                      self.free if rows is None else rows, tol=tol, max_iter=max_iter)
+
+    def consistent_pressure(self, u, prm, tol=1e-8):
+        """Film pressure for the web as it is (a film-only Newton solve)."""
+        rows = self.free[self.free < self.nP]
+        out = self._newton(u, prm, tol, 10, rows=rows)
+        return out.u if out.converged else u
+
+    def solve_newton(self, u0, prm, tol=1e-9, max_iter=40):
+        out = self._newton(self.consistent_pressure(u0, prm), prm, tol, max_iter)
+        return out.u, dict(converged=out.converged, iterations=out.iterations,
+                           residual=out.residual, history=list(out.history), reason=out.reason,
+                           steps=[1.0])
+
+    def solve_picard(self, u0, prm, tol=1e-9, omega=1.0, aitken=True, max_iter=500,
+                     backtrack=1.5):
+        """Picard with the film's coefficients frozen (see :meth:`fe1d.FoilBearing1D.
+        solve_picard`); stops on the coupled residual norm, like Newton."""
+        u = self.consistent_pressure(u0, prm)
+        free = self.free
+        last = {"norm": np.inf}
+
+        def G(x):
+            v = u.copy()
+            v[free] = x
+            F = self.residual(v, prm)[free]
+            last["norm"] = float(np.linalg.norm(F))
+            if not np.isfinite(last["norm"]):
+                raise FloatingPointError("residual not finite")
+            A = self.jacobian(v, prm, newton=False)[free][:, free].tocsc()
+            return x - spla.spsolve(A, F)
+
+        out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
+                     norm=lambda r: last["norm"], backtrack=backtrack)
+        u[free] = out.x
+        res = float(np.linalg.norm(self.residual(u, prm)[free]))
+        return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
+                       history=out.history, reason=out.reason, omegas=out.omegas)
+
+
+def _run(problem, u0, prm, opts):
+    if opts["method"] == "newton":
+        return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
+    return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
+                                aitken=opts["aitken"], max_iter=opts["picard_max_iter"])
+
+
+def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarray:
+    """A state on a finer (nested in X) mesh: web through its exact values and slopes,
+    film pressure through probes."""
+    from scipy.interpolate import RegularGridInterpolator
+
+    v = fine.start_from_line(coarse, u, prm)
+    interp = RegularGridInterpolator((coarse.X, coarse.Z), coarse.vertex_grid(u),
+                                     bounds_error=False, fill_value=0.0)
+    v[:fine.nP] = interp(fine.fbasis.doflocs.T)
+    v[fine.fixed] = 0.0
+    return v
+
+
+def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool = True,
+          **options) -> Result:
+    """Solve one case with the 2-D film and the 1-D web.
+
+    Options (defaults in :data:`DEFAULTS`): as :func:`webfem.models.fe1d.solve` plus
+    ``width_fine`` (cell size at the web edges, scaled units; ``level`` bisects) and
+    ``symmetry`` (True: half width with dP/dZ = 0 at the centreline; False: full width).
+    ``initial``: a previous fe2d result; its 1-D part starts this point's 1-D solve
+    (continuation in a sweep). The 2-D solve always starts from the 1-D solution.
+    """
+    unknown = set(options) - set(DEFAULTS)
+    if unknown:
+        raise CaseError(f"unknown fe2d option(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
+    opts = {**DEFAULTS, **options}
+    if opts["method"] not in METHODS:
+        raise CaseError(f"method = {opts['method']!r} is not valid: must be one of "
+                        + ", ".join(repr(m) for m in METHODS))
+    if not opts["width_fine"] > 0:
+        raise CaseError(f"width_fine = {opts['width_fine']!r} is out of range: must be > 0")
+    t0 = time.perf_counter()
+    prm = FoilParameters.from_case(case, opts["compressible"], opts["contact"], opts["floor"])
+    level = int(opts["level"])
+    Z = width_nodes(case.lam, level, half=bool(opts["symmetry"]), fine=opts["width_fine"])
+
+    # the infinitely wide solution: start and X mesh (already refined where the film is thin)
+    line_start = initial.diagnostics.get("line_result") if initial is not None else None
+    one = fe1d.solve(case, initial=line_start,
+                     **{k: opts[k] for k in ("entry", "level", "compressible", "contact",
+                                             "floor", "adapt", "adapt_ratio", "min_cell")},
+                     raise_on_failure=False)
+    p1, u1 = one.diagnostics["problem"], one.diagnostics["state"]
+    problem = FoilBearing2D(p1.X, Z, order=opts["order"])
+    # start from the infinitely wide solution (a sweep continues through the 1-D part)
+    u0 = problem.start_from_line(p1, u1, prm)
+    u, info = _run(problem, u0, prm, opts)
+    info["iterations"] += one["iterations"]
+    rounds = 0
+    while info["converged"] and rounds < opts["adapt"]:
+        Xn = fe1d._adapted_nodes(problem, u, prm, opts["adapt_ratio"], opts["min_cell"])
+        if Xn is None:
+            break
+        rounds += 1
+        finer = FoilBearing2D(Xn, Z, order=opts["order"])
+        u, info_f = _run(finer, _transfer2d(problem, u, prm, finer), prm, opts)
+        info_f["iterations"] += info["iterations"]
+        info_f["history"] = info["history"] + info_f["history"]
+        problem, info = finer, info_f
+    info["adapt_rounds"] = rounds
+    elapsed = time.perf_counter() - t0
+    mesh_text = (f"{'half' if opts['symmetry'] else 'full'} width, {len(problem.X) - 1} x "
+                 f"{len(Z) - 1} Q{opts['order']} cells, entry/exit {opts['entry']:g} "
+                 f"R eps^(1/3), level {level}; web: Hermite line")
+    summary, diagnostics = fe1d._summary(case, problem, u, prm, info, elapsed, opts,
+                                         model=NAME, mesh=mesh_text)
+    summary["n_cells"] = int(problem.mesh.nelements)
+    summary["width_cells"] = len(Z) - 1
+    if case.beta < 6.0:
+        summary["warnings"].append(f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
+                                   "entry and exit zones; no uniform central gap exists")
+    fields = fe1d._node_fields(case, problem, u, prm)
+    diagnostics.update(state=u, problem=problem, line_result=one)
+    result = Result(case, summary, fields, diagnostics)
+    result.film = _film_fields(case, problem, u, prm)
+    if not info["converged"] and raise_on_failure:
+        raise ConvergenceError(f"fe2d ({opts['method']}) did not converge: {info['reason']} "
+                               f"after {info['iterations']} iterations, residual "
+                               f"{info['residual']:.3e}", result, info.get("history"))
+    return result
+
+
+def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> dict:
+    """Film fields at the 2-D mesh vertices, physical units (for VTU and pictures)."""
+    pts = problem.mesh.p
+    Hs = case.h_scale
+    H = problem.gap(u, prm, pts[0])
+    h = H * Hs
+    p_rel = problem.film_pressure_at_vertices(u) * case.p_bar
+    loc = fe1d._local(case, h)
+    return {
+        "points": np.vstack([pts * case.x_scale, np.zeros(pts.shape[1])]).T,
+        "quads": problem.mesh.t.T.copy(),
+        "p": p_rel + case.air.ambient_pressure, "p_rel": p_rel, "h": h,
+        "p_contact": prm.contact * prm.c * np.exp(-H / prm.S) * case.p_bar,
+        "chi_c": loc["chi_c"], "mu": loc["mu"], "regime": loc["regime"].astype(float),
+    }
