@@ -35,6 +35,7 @@ test-slow: $(STAMP)
 bench: $(STAMP)
 	$(PY) benchmarks/bench_closed_form.py
 	$(PY) benchmarks/bench_fe1d.py
+	$(PY) benchmarks/bench_fe2d.py
 
 clean:
 	rm -rf $(OUT) .pytest_cache

@@ -21,7 +21,14 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["NewtonResult", "newton"]
+__all__ = ["NewtonResult", "newton", "solve_linear"]
+
+
+def solve_linear(A, b) -> np.ndarray:
+    """Sparse direct solve (SuperLU) with the minimum-degree ordering on A^T + A: for the
+    nearly symmetric FE patterns here it fills in 4-6x less than the default COLAMD and is
+    4x faster at 4e5 unknowns (measured; see benchmarks/bench_fe2d.py)."""
+    return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A").solve(b)
 
 
 @dataclass
@@ -59,7 +66,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
             return NewtonResult(u, True, it - 1, norm, history, "residual below tolerance")
         A = J(u).tocsr()[free][:, free].tocsc()
         try:
-            du = spla.spsolve(A, -r)
+            du = solve_linear(A, -r)
         except RuntimeError as err:  # singular factor
             return NewtonResult(u, False, it - 1, norm, history, f"linear solve failed: {err}")
         if not np.all(np.isfinite(du)):

@@ -32,7 +32,6 @@ import time
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.sparse.linalg as spla
 from numpy.polynomial.legendre import leggauss
 from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2
 
@@ -40,7 +39,7 @@ from ..case import Case, CaseError
 from ..errors import ConvergenceError
 from ..fem import forms
 from ..fem.mesh import graded_nodes, line_mesh
-from ..fem.newton import newton
+from ..fem.newton import newton, solve_linear
 from ..fem.picard import picard
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES
@@ -302,7 +301,7 @@ class FoilBearing1D:
             if not np.isfinite(last["norm"]):
                 raise FloatingPointError("residual not finite")
             A = self.jacobian(v, prm, newton=False).tocsr()[free][:, free].tocsc()
-            return x - spla.spsolve(A, F)
+            return x - solve_linear(A, F)
 
         out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
                      norm=lambda r: last["norm"], backtrack=backtrack)
@@ -388,7 +387,7 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
     """Summary keys and diagnostics from a solved state. ``problem`` needs ``X``, ``n_dofs``,
     ``gap(u, prm, X)`` and ``pressure(u, X)`` (the width-averaged film pressure in 2-D)."""
     Hs, Xs = case.h_scale, case.x_scale
-    R, T = case.roller.radius, case.web.tension
+    T = case.web.tension
     e = 0.5 * prm.beta
     pts, wts = _wrap_samples(problem.X, prm.beta)
     h = problem.gap(u, prm, pts) * Hs
@@ -409,7 +408,7 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
         "lambda": case.lam, "beta": case.beta,
         "eq21_valid": bool(eq21_valid(case.beta, case.lam)),
         "converged": bool(info["converged"]), "iterations": int(info["iterations"]),
-        "n_dofs": problem.n_dofs, "solve_time_s": elapsed,
+        "n_dofs": int(problem.n_dofs), "solve_time_s": elapsed,
         "residual": float(info["residual"]),
         "h_c": float(case.sigma * math.log(prm.c)), "sigma": case.sigma,
         "share_boundary": shares[0], "share_mixed": shares[1], "share_fluid": shares[2],

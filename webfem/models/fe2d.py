@@ -24,7 +24,6 @@ Examples
 from __future__ import annotations
 
 import time
-from dataclasses import replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,8 +34,8 @@ from ..case import Case, CaseError
 from ..errors import ConvergenceError
 from ..fem import forms
 from ..fem.film2d import film_coefficients, film_jacobian, film_residual
-from ..fem.mesh import line_mesh, refine_nodes
-from ..fem.newton import newton
+from ..fem.mesh import line_mesh
+from ..fem.newton import newton, solve_linear
 from ..fem.picard import picard
 from ..fem.transfer import film_mesh, quadrature_matrices, width_nodes
 from ..fem.web import web_coefficients, web_jacobian, web_residual
@@ -217,7 +216,7 @@ class FoilBearing2D:
             if not np.isfinite(last["norm"]):
                 raise FloatingPointError("residual not finite")
             A = self.jacobian(v, prm, newton=False)[free][:, free].tocsc()
-            return x - spla.spsolve(A, F)
+            return x - solve_linear(A, F)
 
         out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
                      norm=lambda r: last["norm"], backtrack=backtrack)
