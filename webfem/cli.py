@@ -89,31 +89,20 @@ def _cmd_solve(args) -> int:
 
 def _cmd_sweep(args) -> int:
     from .io.charts import sweep_chart
-    from .io.tables import sweep_rows, write_csv
+    from .io.tables import sweep_rows
+    from .sweeps import run
 
     spec = load_sweep(args.case, _overrides(args.set))
     out = Path(args.out)
-    print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
-          f"{len(spec.values)} values x {len(spec.series)} series", file=sys.stderr)
-    points = list(sweep(spec, model=args.model, progress=None if args.quiet else _Progress(),
-                        **_options(args.opt)))
-    rows = sweep_rows(points, spec.parameter)
     stem = Path(args.case).stem
-    if args.vtu:
-        from .io.vtu import write_pvd
-        for label in dict.fromkeys(lab for lab, _, _ in points):
-            tag = "".join(ch if ch.isalnum() else "_" for ch in label).strip("_")
-            entries = {"web": [], "film": []}
-            for lab, value, res in points:
-                if lab != label:
-                    continue
-                for path in res.save_vtu(args.vtu, f"{stem}_{args.model}_{tag}_{value:g}"):
-                    entries["film" if path.stem.endswith("_film") else "web"].append((value, path))
-            for part, items in entries.items():
-                if items:
-                    pvd = write_pvd(items, Path(args.vtu) / f"{stem}_{args.model}_{tag}_{part}.pvd")
-                    print(f"wrote {pvd}")
-    csv_path = write_csv(rows, out / f"{stem}_{args.model}.csv")
+    where = ("Dask " + args.dask) if args.dask else (
+        f"{args.workers} processes" if args.workers > 1 else "serial, with continuation")
+    print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
+          f"{len(spec.values)} values x {len(spec.series)} series ({where})", file=sys.stderr)
+    csv_path = out / f"{stem}_{args.model}.csv"
+    rows = run(spec, args.model, csv_path, options=_options(args.opt), workers=args.workers,
+               dask=args.dask, vtu_dir=args.vtu, vtu_stem=f"{stem}_{args.model}",
+               progress=None if args.quiet else _Progress())
     reference = None
     if args.model != "closed-form":  # the paper's model beside the field solution
         reference = sweep_rows(sweep(spec, model="closed-form"), spec.parameter)
@@ -209,12 +198,20 @@ def build_parser() -> argparse.ArgumentParser:
                         "n_dofs, solve_time_s, ...)")
     p.set_defaults(func=_cmd_solve)
 
-    p = sub.add_parser("sweep", help="sweep a parameter ([sweep] table): CSV and chart")
+    p = sub.add_parser("sweep", help="sweep a parameter ([sweep] table): CSV and chart; "
+                                     "each point is saved as it finishes and a re-run of the "
+                                     "same sweep resumes where it stopped")
     common(p)
     p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv and .png")
     p.add_argument("--quiet", action="store_true", help="no progress line")
     p.add_argument("--vtu", metavar="DIR",
                    help="also write VTU files per point and a .pvd collection per series")
+    p.add_argument("--workers", type=int, default=1,
+                   help="local worker processes (default 1: serial with continuation from "
+                        "point to point; > 1: independent points in parallel)")
+    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
+                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
+                        "workers), an address joins an existing scheduler")
     p.set_defaults(func=_cmd_sweep)
 
     p = sub.add_parser("mesh", help="write the graded web and film meshes of a case (VTU, "

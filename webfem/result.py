@@ -80,6 +80,13 @@ class Result:
     diagnostics: dict[str, Any] = field(default_factory=dict)
     film: dict[str, np.ndarray] | None = None
 
+    def slim(self) -> "Result":
+        """A copy without the solver's internal objects (mesh bases, state vector): small
+        and picklable, for worker processes and storage."""
+        heavy = {"problem", "state", "line_result"}
+        diag = {k: v for k, v in self.diagnostics.items() if k not in heavy}
+        return Result(self.case, dict(self.summary), dict(self.fields), diag, self.film)
+
     def save_vtu(self, folder, stem: str | None = None) -> list:
         """Write the web (and, for 2-D models, the film) as VTU files; returns the paths."""
         from .io.vtu import write_result

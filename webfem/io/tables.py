@@ -9,10 +9,12 @@ from pathlib import Path
 
 from ..result import SUMMARY_KEYS
 
-__all__ = ["sweep_rows", "write_csv", "read_csv"]
+__all__ = ["ROW_KEYS", "sweep_rows", "write_csv", "read_csv"]
 
-EXTRA_KEYS = ("h_c", "sigma", "share_boundary", "share_mixed", "share_fluid", "eps", "kappa",
-              "U", "U_slide", "residual", "warnings")
+EXTRA_KEYS = ("h_c", "sigma", "share_boundary", "share_mixed", "share_fluid", "contact_share",
+              "eps", "kappa", "U", "U_slide", "residual", "solver_message", "mesh", "warnings")
+#: The columns of a sweep CSV, in order.
+ROW_KEYS = ("series", "parameter", "value") + SUMMARY_KEYS + EXTRA_KEYS
 
 
 def sweep_rows(points, parameter: str) -> list[dict]:
