@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Callable, Iterator
 
 from .case import Case, CaseError, Sweep
-from .errors import ConvergenceError
+from .errors import ConvergenceError, ValidityWarning  # noqa: F401  (re-exported)
 from .models import closed
 from .result import Result
 
@@ -35,8 +35,37 @@ def _model(name: str) -> Callable[..., Result]:
 
 
 def solve(case: Case, model: str = "closed-form", **options) -> Result:
-    """Solve one case with the named model (see :data:`MODELS`)."""
-    return _model(model)(case, **options)
+    """Solve one case with the named model (see :data:`MODELS`).
+
+    ``mesh=PATH`` (FE models): start from the x nodes of a mesh file (metres; e.g. one of
+    ``meshes/``) instead of webfem's graded mesh.
+    """
+    if "mesh" in options:
+        from .io.meshes import read_x_nodes
+        options = dict(options)
+        options["nodes"] = read_x_nodes(options.pop("mesh")) / case.x_scale
+    result = _model(model)(case, **options)
+    _flag_validity(result)
+    return result
+
+
+#: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
+MEAN_FREE_PATH = 68e-9
+
+
+def _flag_validity(result: Result) -> None:
+    """Add the slip-flow warning where the film is thin against the mean free path, then
+    issue every warning of the result as a :class:`ValidityWarning`."""
+    import warnings
+
+    s = result.summary
+    mfp = MEAN_FREE_PATH * 101325.0 / result.case.air.ambient_pressure
+    if 0.0 < s["h_min"] < 10.0 * mfp:
+        s.setdefault("warnings", []).append(
+            f"h_min = {s['h_min']:.3g} m is below 10 mean free paths of air ({10 * mfp:.3g} m): "
+            "slip flow, where the continuum Reynolds equation overestimates the film pressure")
+    for text in s.get("warnings", []):
+        warnings.warn(text, ValidityWarning, stacklevel=3)
 
 
 def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = None,

@@ -226,7 +226,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    import warnings
+
+    from .errors import ValidityWarning
+
     args = build_parser().parse_args(argv)
+    # the summary (or the JSON "warnings" key) already carries each validity warning
+    warnings.simplefilter("ignore", ValidityWarning)
     try:
         return args.func(args)
     except CaseError as err:

@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
-__all__ = ["ConvergenceError"]
+__all__ = ["ConvergenceError", "ValidityWarning"]
+
+
+class ValidityWarning(UserWarning):
+    """A legal input outside a model's validity (Eq. 21's range, incompressibility, slip
+    flow); the result is computed and carries the same text in its ``warnings`` key."""
 
 
 class ConvergenceError(RuntimeError):

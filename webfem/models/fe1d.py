@@ -38,7 +38,7 @@ from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2
 from ..case import Case, CaseError
 from ..errors import ConvergenceError
 from ..fem import forms
-from ..fem.mesh import graded_nodes, line_mesh
+from ..fem.mesh import graded_nodes, line_mesh, refine_nodes
 from ..fem.newton import newton, solve_linear
 from ..fem.picard import picard
 from ..physics.closed_form import eq21_valid
@@ -57,7 +57,7 @@ METHODS = ("newton", "picard", "picard-staggered")
 DEFAULTS = dict(entry=40.0, level=0, order=2, compressible=True, contact=True,
                 method="newton", tol=1e-9, max_iter=60, omega=1.0, aitken=True,
                 picard_max_iter=500, floor=1e-3, adapt=6, adapt_ratio=1.0,
-                min_cell=2e-3)
+                min_cell=2e-3, nodes=None)
 
 
 @dataclass(frozen=True)
@@ -415,13 +415,17 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
         "contact_share": contact_share,
         "eps": case.eps, "kappa": case.kappa, "U": case.U, "U_slide": case.U_slide,
         "method": opts["method"], "n_cells": len(problem.X) - 1,
-        "mesh": mesh or f"graded line, {len(problem.X) - 1} cells, entry/exit "
+        "mesh": mesh or f"{'user' if opts.get('nodes') is not None else 'graded'} line, "
+                        f"{len(problem.X) - 1} cells, entry/exit "
                         f"{opts['entry']:g} R eps^(1/3), level {opts['level']}, "
                         f"P{opts['order']}/Hermite",
         "warnings": [],
     }
-    if not opts["compressible"]:
-        summary["warnings"].append("incompressible film (compressible=False)")
+    if not opts["compressible"] and case.p_bar > 0.02 * case.air.ambient_pressure:
+        ratio = case.p_bar / case.air.ambient_pressure
+        summary["warnings"].append(
+            f"incompressible film with T/R = {ratio:.3g} p_a > 0.02 p_a: compressibility "
+            f"shifts the central gap by about {-45 * ratio:.2g} % (use compressible=True)")
     if case.lam < 7.0 and model == NAME:
         summary["warnings"].append(
             f"lambda = {case.lam:.3g}: a narrow web leaks air at its edges, which the 1-D "
@@ -453,9 +457,27 @@ def _node_fields(case: Case, problem: FoilBearing1D, u, prm: FoilParameters) -> 
 _CACHE: dict = {}
 
 
-def _problem(beta, entry, level, order) -> FoilBearing1D:
+def _nodes(beta, entry, level, nodes=None) -> np.ndarray:
+    """The starting X nodes: webfem's graded mesh, or the user's (``nodes``, scaled), with the
+    wrap edges added as nodes (the wrap pressure T/R starts and stops there)."""
+    if nodes is None:
+        return graded_nodes(beta, entry, level=level)
+    X = np.unique(np.asarray(nodes, float))
+    e = 0.5 * beta
+    if X.size < 3 or not (X[0] < -e and X[-1] > e):
+        raise CaseError(f"mesh spans X = {X[0]:.4g} .. {X[-1]:.4g} (scaled), which does not "
+                        f"cover the wrap |X| <= {e:.4g} with entry and exit zones; valid: a "
+                        "line mesh over the wrap plus both zones")
+    tol = 1e-9 * (X[-1] - X[0])
+    X = X[(np.abs(X + e) > tol) & (np.abs(X - e) > tol)]       # snap onto the exact edges
+    X = np.unique(np.concatenate([X, [-e, e]]))
+    X = X[np.concatenate([[True], np.diff(X) > tol])]          # drop near-duplicates
+    return refine_nodes(X, level)
+
+
+def _problem(beta, entry, level, order, nodes=None) -> FoilBearing1D:
     """One discrete problem per mesh, reused across solves of a sweep."""
-    X = graded_nodes(beta, entry, level=level)
+    X = _nodes(beta, entry, level, nodes)
     key = (X.size, float(X[0]), float(X[-1]), order, X.tobytes())
     if key not in _CACHE:
         if len(_CACHE) > 8:
@@ -474,6 +496,8 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     the web equilibrium); ``method`` "newton" or "picard"; ``tol`` (Newton: residual 2-norm;
     Picard: web update max-norm, scaled units); ``max_iter``; ``omega`` and ``aitken``
     (Picard relaxation); ``floor`` smallest scaled film thickness in Reynolds.
+    ``nodes``: starting mesh nodes in scaled X (instead of webfem's graded mesh; the API's
+    ``mesh=PATH`` option reads them from a mesh file).
     ``initial``: a previous fe1d result to start from (continuation in a sweep).
 
     Raises :class:`webfem.errors.ConvergenceError` (carrying the unconverged result and the
@@ -492,7 +516,8 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
         raise CaseError(f"level = {opts['level']!r} is out of range: integer 0..8")
     t0 = time.perf_counter()
     prm = FoilParameters.from_case(case, opts["compressible"], opts["contact"], opts["floor"])
-    problem = _problem(prm.beta, opts["entry"], int(opts["level"]), opts["order"])
+    problem = _problem(prm.beta, opts["entry"], int(opts["level"]), opts["order"],
+                       opts["nodes"])
     u0 = _start(problem, prm, case, initial)
     u, info = _run(problem, u0, prm, opts)
     rounds = 0
@@ -530,15 +555,17 @@ def _run(problem, u0, prm, opts):
                   max_iter=opts["picard_max_iter"])
 
 
-def _adapted_nodes(problem, u, prm, ratio, min_cell):
+def _adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     """Bisect cells longer than ``ratio`` times the local film or contact length, or None.
 
     Where the film is thin the sink and the contact springs make boundary layers far
     shorter than the entry-zone scale: the film's reaction length sqrt(H^3 / K) and the
-    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities.
+    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities. No refinement past
+    ``max_cells`` cells.
     """
     X = problem.X
-    H = np.maximum(problem.gap(u, prm, X), prm.floor)
+    # films thinner than the roughness carry nothing the asperities do not: resolve to S
+    H = np.maximum(problem.gap(u, prm, X), max(prm.floor, prm.S if prm.contact else 0.0))
     Hc = np.minimum(H[1:], H[:-1])
     scale = np.full(Hc.shape, np.inf)
     if prm.K > 0:
@@ -548,7 +575,7 @@ def _adapted_nodes(problem, u, prm, ratio, min_cell):
             scale = np.minimum(scale, np.sqrt(prm.S / (prm.c * np.exp(-Hc / prm.S))))
     dx = np.diff(X)
     mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
-    if not mark.any():
+    if not mark.any() or X.size + mark.sum() > max_cells:
         return None
     return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
 

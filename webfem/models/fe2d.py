@@ -52,7 +52,7 @@ METHODS = ("newton", "picard")
 DEFAULTS = dict(entry=40.0, level=0, order=2, width_fine=0.25, symmetry=True,
                 compressible=True, contact=True, method="newton", tol=1e-9, max_iter=40,
                 omega=1.0, aitken=True, picard_max_iter=500, floor=1e-3, adapt=6,
-                adapt_ratio=1.0, min_cell=2e-3)
+                adapt_ratio=1.0, min_cell=2e-3, nodes=None)
 
 
 class FoilBearing2D:
@@ -274,7 +274,8 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     line_start = initial.diagnostics.get("line_result") if initial is not None else None
     one = fe1d.solve(case, initial=line_start,
                      **{k: opts[k] for k in ("entry", "level", "compressible", "contact",
-                                             "floor", "adapt", "adapt_ratio", "min_cell")},
+                                             "floor", "adapt", "adapt_ratio", "min_cell",
+                                             "nodes")},
                      raise_on_failure=False)
     p1, u1 = one.diagnostics["problem"], one.diagnostics["state"]
     problem = FoilBearing2D(p1.X, Z, order=opts["order"])

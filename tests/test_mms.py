@@ -1,0 +1,122 @@
+"""Manufactured solutions: observed convergence orders of the 2-D Reynolds operator (with the
+permeation sink and compressibility) and of the web beam, in L2 and H1 (H2 for the beam)."""
+
+import numpy as np
+import pytest
+from skfem import (Basis, ElementLineHermite, ElementQuad1, ElementQuad2, Functional,
+                   LinearForm, MeshLine, MeshQuad)
+
+from webfem.fem.film2d import film_coefficients, film_jacobian, film_residual
+from webfem.fem.newton import newton
+from webfem.fem.web import web_jacobian, web_residual
+
+A, D, K = 0.3, 0.4, 2.0     # gap modulation, compressibility d, sink K
+
+
+def gap(x):
+    return 1.0 + A * np.sin(np.pi * x), A * np.pi * np.cos(np.pi * x)
+
+
+def exact(x, z):
+    s, c = np.sin, np.cos
+    P = s(np.pi * x) * s(np.pi * z)
+    Px = np.pi * c(np.pi * x) * s(np.pi * z)
+    Pz = np.pi * s(np.pi * x) * c(np.pi * z)
+    Pxx = -np.pi**2 * P
+    return P, Px, Pz, Pxx, Pxx   # Pzz = Pxx for this P
+
+
+def source(x, z):
+    """f = -div((1 + D P) H^3 grad P) + d((1 + D P) H)/dx + K (1 + D P) P."""
+    H, Hx = gap(x)
+    P, Px, Pz, Pxx, Pzz = exact(x, z)
+    rho = 1 + D * P
+    div = (D * Px * H**3 * Px + rho * 3 * H**2 * Hx * Px + rho * H**3 * Pxx
+           + D * Pz**2 * H**3 + rho * H**3 * Pzz)
+    return -div + (D * Px * H + rho * Hx) + K * rho * P
+
+
+@LinearForm
+def load(q, w):
+    return w["f"] * q
+
+
+@Functional
+def err_l2(w):
+    return (w["P"] - w["E"]) ** 2
+
+
+@Functional
+def err_h1(w):
+    return (w["P"].grad[0] - w["Ex"]) ** 2 + (w["P"].grad[1] - w["Ez"]) ** 2
+
+
+def solve_film(n, element):
+    mesh = MeshQuad.init_tensor(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    basis = Basis(mesh, element, intorder=6)
+    x, z = (np.asarray(c) for c in basis.global_coordinates())
+    H = gap(x)[0]
+    prm = {"d": D, "K": K, "floor": 1e-6}
+    b = load.assemble(basis, f=source(x, z))
+
+    def parts(p, nt=True):
+        P = basis.interpolate(p)
+        return P, film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], prm, nt)
+
+    def F(p):
+        P, c = parts(p)
+        return film_residual.assemble(basis, P=P, **c) - b
+
+    def J(p):
+        return film_jacobian.assemble(basis, **parts(p)[1])
+
+    free = basis.complement_dofs(basis.get_dofs())
+    out = newton(F, J, np.zeros(basis.N), free, tol=1e-12)
+    assert out.converged
+    P = basis.interpolate(out.u)
+    E, Ex, Ez, _, _ = exact(x, z)
+    return (np.sqrt(err_l2.assemble(basis, P=P, E=E)),
+            np.sqrt(err_h1.assemble(basis, P=P, Ex=Ex, Ez=Ez)))
+
+
+@pytest.mark.parametrize("element,l2,h1", [(ElementQuad1, 2.0, 1.0), (ElementQuad2, 3.0, 2.0)])
+def test_reynolds_2d_orders(element, l2, h1):
+    errs = np.array([solve_film(n, element()) for n in (4, 8, 16)])
+    orders = np.log2(errs[:-1] / errs[1:])
+    assert orders[-1, 0] == pytest.approx(l2, abs=0.15), orders
+    assert orders[-1, 1] == pytest.approx(h1, abs=0.15), orders
+
+
+DN = 0.7   # bending stiffness (scaled)
+
+
+@Functional
+def beam_errors(w):
+    e = w["W"] - np.sin(np.pi * w.x[0])
+    e1 = w["W"].grad[0] - np.pi * np.cos(np.pi * w.x[0])
+    e2 = w["W"].hess[0, 0] + np.pi**2 * np.sin(np.pi * w.x[0])
+    return np.stack([e**2, e1**2, e2**2])[w["k"]]
+
+
+def solve_beam(n):
+    """-W'' + Dn W'''' = f on (0, 1), W = 0 and W'' = 0 (natural) at the ends."""
+    mesh = MeshLine(np.linspace(0, 1, n + 1)).with_boundaries(
+        {"left": lambda x: x[0] == 0, "right": lambda x: x[0] == 1})
+    basis = Basis(mesh, ElementLineHermite(), intorder=8)   # a new Hermite element per mesh
+    x = np.asarray(basis.global_coordinates()[0])
+    f = (np.pi**2 + DN * np.pi**4) * np.sin(np.pi * x)
+    zero = np.zeros_like(x)
+    coef = {"chi": zero, "load": f, "k_c": zero, "Dn": DN}
+    free = basis.complement_dofs(basis.get_dofs({"left", "right"}).all("u"))
+    out = newton(lambda w: web_residual.assemble(basis, W=basis.interpolate(w), **coef),
+                 lambda w: web_jacobian.assemble(basis, **coef), np.zeros(basis.N), free,
+                 tol=1e-12)
+    W = basis.interpolate(out.u)
+    return [np.sqrt(beam_errors.assemble(basis, W=W, k=k)) for k in range(3)]
+
+
+def test_beam_orders():
+    """Cubic Hermite: L2 order 4, H1 seminorm 3, H2 seminorm 2."""
+    errs = np.array([solve_beam(n) for n in (4, 8, 16)])
+    orders = np.log2(errs[:-1] / errs[1:])[-1]
+    assert orders == pytest.approx([4.0, 3.0, 2.0], abs=0.15)
