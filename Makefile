@@ -36,6 +36,7 @@ bench: $(STAMP)
 	$(PY) benchmarks/bench_closed_form.py
 	$(PY) benchmarks/bench_fe1d.py
 	$(PY) benchmarks/bench_fe2d.py
+	$(PY) benchmarks/bench_sweeps.py
 
 clean:
 	rm -rf $(OUT) .pytest_cache

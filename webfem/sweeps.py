@@ -10,9 +10,10 @@ Execution:
 
 * ``workers=1`` (serial): each series in order, every point started from the previous one
   (continuation; the cheapest path for the FE models).
-* ``workers=N > 1``: a pool of N local processes, points solved independently (cold starts).
+* ``workers=N > 1``: a pool of N local processes; the points go out in chunks of consecutive
+  points of a series, continuation inside each chunk, a cold start at each chunk's first point.
 * ``dask="local"`` starts a ``dask.distributed.LocalCluster``; ``dask="tcp://host:port"`` joins
-  an existing scheduler; points are submitted as independent tasks.
+  an existing scheduler; chunks are submitted as tasks.
 
 The closed form is vectorised and always runs in-process.
 """
@@ -44,12 +45,23 @@ def _key(label, value) -> tuple[str, str]:
     return str(label), repr(float(value))
 
 
-def solve_point(case: Case, model: str, options: dict):
-    """Solve one point in a worker; returns a slim (picklable) result, failures included."""
+def solve_point(case: Case, model: str, options: dict, initial=None):
+    """Solve one point; returns the full result, failures included (``converged`` False)."""
     try:
-        return solve(case, model=model, **options).slim()
+        return solve(case, model=model, initial=initial, **options)
     except ConvergenceError as err:
-        return err.result.slim()
+        return err.result
+
+
+def solve_chunk(cases, model: str, options: dict):
+    """Solve consecutive points of one series in a worker, each from the previous converged
+    one (continuation); returns slim (picklable) results."""
+    out, previous = [], None
+    for case in cases:
+        res = solve_point(case, model, options, previous)
+        previous = res if res["converged"] else None
+        out.append(res.slim())
+    return out
 
 
 def _load_done(csv_path: Path, sidecar: Path, signature: dict) -> dict:
@@ -83,10 +95,25 @@ class _Appender:
             os.fsync(fh.fileno())
 
 
+def _chunks(todo, size):
+    """Consecutive points of one series, at most ``size`` each (continuation inside)."""
+    out = []
+    for label, value, case in todo:
+        if out and out[-1][-1][0] == label and len(out[-1]) < size:
+            out[-1].append((label, value, case))
+        else:
+            out.append([(label, value, case)])
+    return out
+
+
 def run(spec: Sweep, model: str, out_csv, *, options: dict | None = None, workers: int = 1,
-        dask: str | None = None, vtu_dir=None, vtu_stem: str = "sweep",
+        dask: str | None = None, vtu_dir=None, vtu_stem: str = "sweep", chunk: int = 4,
         progress: Callable[[int, int], None] | None = None) -> list[dict]:
     """Run (or resume) a sweep, writing each point as it finishes; returns the rows in order.
+
+    In parallel (``workers > 1`` or ``dask``) the points go out in chunks of up to ``chunk``
+    consecutive points of a series, solved with continuation inside the chunk; a chunk's
+    points are written when it returns (an interruption loses at most the running chunks).
 
     Returns a list of row dicts (strings and numbers as in the CSV, ``converged`` as bool).
     """
@@ -134,21 +161,23 @@ def run(spec: Sweep, model: str, out_csv, *, options: dict | None = None, worker
     if todo and dask is None and workers <= 1:
         previous: dict[str, object] = {}
         for label, value, case in todo:
-            try:
-                res = solve(case, model=model, initial=previous.get(label), **options)
+            res = solve_point(case, model, options, previous.get(label))
+            if res["converged"]:
                 previous[label] = res
-            except ConvergenceError as err:
-                res = err.result
+            else:
                 previous.pop(label, None)
             record(label, value, res)
-    elif todo and dask is None:
+        chunks = []
+    else:
+        chunks = _chunks(todo, chunk)
+    if chunks and dask is None:
         with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = {pool.submit(solve_point, case, model, options): (label, value)
-                       for label, value, case in todo}
+            futures = {pool.submit(solve_chunk, [c for _, _, c in ch], model, options): ch
+                       for ch in chunks}
             for fut in as_completed(futures):
-                label, value = futures[fut]
-                record(label, value, fut.result())
-    elif todo:
+                for (label, value, _), res in zip(futures[fut], fut.result()):
+                    record(label, value, res)
+    elif chunks:
         from dask.distributed import Client, LocalCluster
         from dask.distributed import as_completed as dask_completed
 
@@ -157,11 +186,11 @@ def run(spec: Sweep, model: str, out_csv, *, options: dict | None = None, worker
             if dask == "local" else None
         client = Client(cluster if cluster is not None else dask)
         try:
-            futures = {client.submit(solve_point, case, model, options, pure=False):
-                       (label, value) for label, value, case in todo}
+            futures = {client.submit(solve_chunk, [c for _, _, c in ch], model, options,
+                                     pure=False): ch for ch in chunks}
             for fut in dask_completed(list(futures)):
-                label, value = futures[fut]
-                record(label, value, fut.result())
+                for (label, value, _), res in zip(futures[fut], fut.result()):
+                    record(label, value, res)
         finally:
             client.close()
             if cluster is not None:

@@ -1,0 +1,103 @@
+"""Property tests (hypothesis): monotonicity, bounds, symmetry and unit invariance."""
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import webfem
+from webfem import Case
+from webfem.models import closed, fe1d, fe2d
+from webfem.physics.contact import load_ratio
+from webfem.physics.friction import local_friction, mu_film
+
+# operating points inside Eq. 21's range (checked in the tests) and the paper's matrix
+points = st.fixed_dictionaries({
+    "roller.speed": st.floats(2.0, 40.0), "web.tension": st.floats(40.0, 120.0),
+    "wrap.angle_deg": st.floats(20.0, 120.0), "web.width": st.floats(0.02, 0.5),
+    "roller.radius": st.floats(0.035, 0.1)})
+
+
+@settings(max_examples=200, deadline=None)
+@given(points, st.floats(1.01, 3.0))
+def test_closed_form_gap_grows_with_speed_and_falls_with_tension(values, factor):
+    case = Case().updated(values)
+    if not (case.lam > 7 and case.beta > 6):
+        return
+    base = closed.solve(case)
+    faster = case.updated({"roller.speed": case.roller.speed * factor})
+    tighter = case.updated({"web.tension": case.web.tension * factor})
+    for key in ("h_inlet", "h_center", "h_outlet"):
+        assert closed.solve(faster)[key] >= base[key]
+        assert closed.solve(tighter)[key] <= base[key]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(-5e-6, 60e-6), st.floats(10.0, 500.0) | st.just(1454.5),
+       st.floats(0.0, 40.0), st.sampled_from(["paper", "continuous"]))
+def test_load_ratio_and_friction_bounds(h, p_bar, U_s, variant):
+    chi = load_ratio(h, p_bar, 175e3, 4e-6, 70e-6, variant)
+    assert 0.0 <= chi <= 1.0
+    loc = local_friction(np.array([h]), R=0.055, T=p_bar * 0.055, U_s=U_s, eta=1.81e-5,
+                         E_b=175e3, sigma=4e-6, t=70e-6, mu_cc=0.3, C=0.4, variant=variant)
+    bound = 0.3 + (mu_film(h, 1.81e-5, 0.055, U_s, p_bar * 0.055) if h > 0 else 0.0)
+    assert 0.0 <= loc["mu"][0] <= bound + 1e-15
+
+
+def rescale(case: Case, length: float, mass: float, time: float) -> Case:
+    """The same physical case in other units: lengths x length, masses x mass, times x time
+    (a value in unit u becomes value / u_new ...; here simply its dimension's factor)."""
+    L, M, T = length, mass, time
+    f = {  # dimension of each key as L^a M^b T^c
+        "roller.radius": L, "roller.speed": L / T, "roller.roughness": L,
+        "web.width": L, "web.tension": M / T**2, "web.speed": L / T, "web.thickness": L,
+        "web.modulus_thickness": M / (L * T**2), "web.modulus_md": M / (L * T**2),
+        "web.roughness": L, "web.permeability": L**2, "web.bending_stiffness": M * L**2 / T**2,
+        "air.viscosity": M / (L * T), "air.ambient_pressure": M / (L * T**2),
+        "friction.speed_constant": L / T,
+    }
+    return case.updated({k: case.get(k) * v for k, v in f.items()})
+
+
+units = st.tuples(st.floats(1e-3, 1e3), st.floats(1e-3, 1e3), st.floats(1e-3, 1e3))
+
+
+@settings(max_examples=100, deadline=None)
+@given(points, units)
+def test_closed_form_is_unit_invariant(values, scale):
+    a = closed.solve(Case().updated(values))
+    b = closed.solve(rescale(Case().updated(values), *scale))
+    L = scale[0]
+    for key in ("h_inlet", "h_center", "h_outlet", "h_c"):
+        assert b[key] == pytest.approx(a[key] * L, rel=1e-9, abs=1e-30)
+    for key in ("mu", "lambda", "beta", "share_fluid"):
+        assert b[key] == pytest.approx(a[key], rel=1e-9, abs=1e-12)
+    assert b["delta_T"] == pytest.approx(a["delta_T"] * scale[1] / scale[2] ** 2, rel=1e-9)
+
+
+@settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(units)
+def test_fe1d_is_unit_invariant(scale):
+    case = Case().updated({"roller.speed": 30.0, "web.bending_stiffness": 1e-4})
+    a = fe1d.solve(case)
+    b = fe1d.solve(rescale(case, *scale))
+    for key in ("h_center", "h_min", "h_outlet"):
+        assert b[key] == pytest.approx(a[key] * scale[0], rel=1e-7)
+    assert b["mu"] == pytest.approx(a["mu"], rel=1e-7)
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.floats(24.0, 38.0), st.floats(1.05, 1.3))
+def test_fe1d_gap_grows_with_speed_where_the_web_flies(speed, factor):
+    slow = fe1d.solve(Case().updated({"roller.speed": speed}))
+    fast = fe1d.solve(Case().updated({"roller.speed": speed * factor}))
+    assert fast["h_center"] > slow["h_center"] and fast["h_min"] > slow["h_min"]
+
+
+def test_fe2d_full_width_is_symmetric_in_z():
+    r = fe2d.solve(Case().updated({"roller.speed": 40.0}), symmetry=False)
+    pts, p = r.film["points"], r.film["p_rel"]
+    order = np.lexsort((pts[:, 1], pts[:, 0]))
+    mirror = np.lexsort((-pts[:, 1], pts[:, 0]))
+    assert np.allclose(pts[order, 1], -pts[mirror, 1])
+    assert np.allclose(p[order], p[mirror], rtol=1e-8, atol=1e-8 * np.abs(p).max())
