@@ -157,3 +157,11 @@ def test_sweep_writes_pvd(tmp_path):
                  str(tmp_path / "vtu"), "--quiet"]) == 0
     pvd = (tmp_path / "vtu" / "s_fe2d_base_film.pvd").read_text()
     assert pvd.count("<DataSet") == 2 and 'timestep="40.0"' in pvd
+
+
+def test_picard_matches_newton_2d(fast_result):
+    p = fe2d.solve(FAST, method="picard")
+    assert p["converged"] and p["method"] == "picard"
+    for key in ("h_center", "h_min"):
+        assert p[key] == pytest.approx(fast_result[key], rel=1e-6)
+    assert p["iterations"] > fast_result["iterations"]

@@ -40,7 +40,7 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
            omega_bounds: tuple[float, float] = (1e-3, 1.0), diverge_factor: float = 1e6,
            monitor: Callable[[int, float], None] | None = None,
            norm: Callable[[np.ndarray], float] | None = None,
-           backtrack: float | None = None) -> PicardResult:
+           backtrack: float | None = None, anderson: int = 0) -> PicardResult:
     """Iterate x <- x + omega (G(x) - x) until norm(G(x) - x) <= tol.
 
     ``norm`` defaults to the max-norm of the fixed-point residual; a caller may measure
@@ -53,6 +53,10 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
     ``backtrack`` (e.g. 1.5): when the residual grows more than this factor over the last
     accepted one (or is not finite), the step is undone and omega halved, and Aitken's
     history is reset; an adaptive safeguard for iterations that overshoot.
+
+    ``anderson`` (depth m > 0): Anderson acceleration of the relaxed iteration, i.e. the next
+    iterate combines the last m iterates and residuals by least squares (the interface
+    quasi-Newton method of partitioned fluid-structure coupling); it overrides Aitken.
     """
     if not 0.0 < omega <= 2.0:
         raise ValueError(f"omega = {omega} is out of range: must be in (0, 2]")
@@ -61,6 +65,7 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
     r_prev = None
     best = np.inf
     accepted = None          # (x, residual size) of the last accepted iterate
+    memory: list[tuple[np.ndarray, np.ndarray]] = []   # Anderson: (x, r) pairs
     for it in range(1, max_iter + 1):
         try:
             gx = G(x)
@@ -83,6 +88,7 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
             x_acc, _, r_acc = accepted
             x = x_acc + omega * r_acc
             r_prev = None
+            memory.clear()
             omegas.append(omega)
             continue
         if not np.isfinite(size) or size > diverge_factor * best:
@@ -91,13 +97,22 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
         if size <= tol:
             return PicardResult(x if norm is not None else gx, True, it - 1 if norm is not None
                                 else it, size, history, omegas, "residual below tolerance")
-        if aitken and r_prev is not None:
+        if aitken and not anderson and r_prev is not None:
             dr = r - r_prev
             denom = float(dr @ dr)
             if denom > 0.0:
                 omega = float(np.clip(-omega * float(r_prev @ dr) / denom, *omega_bounds))
         omegas.append(omega)
         accepted = (x, size, r)
-        x = x + omega * r
+        x_next = x + omega * r
+        if anderson:
+            memory.append((x, r))
+            del memory[:-(anderson + 1)]
+            if len(memory) > 1:
+                dX = np.column_stack([b[0] - a[0] for a, b in zip(memory, memory[1:])])
+                dR = np.column_stack([b[1] - a[1] for a, b in zip(memory, memory[1:])])
+                gamma = np.linalg.lstsq(dR, r, rcond=None)[0]
+                x_next = x_next - (dX + omega * dR) @ gamma
+        x = x_next
         r_prev = r
     return PicardResult(x, False, max_iter, history[-1], history, omegas, "stalled")

@@ -55,7 +55,7 @@ METHODS = ("newton", "picard", "picard-staggered")
 
 #: Default discretisation and solver settings (see :func:`solve`).
 DEFAULTS = dict(entry=40.0, level=0, order=2, compressible=True, contact=True,
-                method="newton", tol=1e-9, max_iter=60, omega=1.0, aitken=True,
+                method="newton", tol=1e-9, max_iter=60, omega=1.0, aitken=True, anderson=10,
                 picard_max_iter=500, floor=1e-3, adapt=6, adapt_ratio=1.0,
                 min_cell=2e-3, nodes=None)
 
@@ -279,12 +279,14 @@ class FoilBearing1D:
                 s = min(1.0, s_prev + ds)
 
     def solve_picard(self, u0, prm, tol=1e-9, omega=1.0, aitken=True, max_iter=3000,
-                     backtrack=1.5):
+                     backtrack=1.5, anderson=10):
         """Picard iteration on the coupled system: film and web solved together each sweep
         with the film's nonlinear coefficients H^3 and 1 + d P frozen at the last iterate,
-        under-relaxed (fixed ``omega``, or Aitken's dynamic factor starting from it). With
-        ``backtrack`` (default 1.5) a step that raises the residual more than that factor is
-        undone and omega halved; ``backtrack=None`` gives the plain fixed-factor iteration.
+        under-relaxed: Anderson acceleration of depth ``anderson`` (default 10) and, if that
+        fails, Aitken's dynamic factor (``aitken``) or the fixed ``omega``. With ``backtrack``
+        (default 1.5) a step that raises the residual more than that factor is undone and
+        omega halved; ``anderson=0, aitken=False, backtrack=None`` is the plain fixed-factor
+        iteration.
 
         Stops when the coupled residual ||F||_2 <= ``tol``, the same test as Newton, so the
         two compare at equal tolerance.
@@ -304,7 +306,15 @@ class FoilBearing1D:
             return x - solve_linear(A, F)
 
         out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                     norm=lambda r: last["norm"], backtrack=backtrack)
+                     norm=lambda r: last["norm"], backtrack=backtrack, anderson=anderson)
+        if not out.converged and anderson:
+            # Anderson's least squares can lock onto a bad combination: plain relaxation
+            first = out
+            out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
+                         norm=lambda r: last["norm"], backtrack=backtrack)
+            out.iterations += first.iterations
+            out.history = first.history + out.history
+            out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
         u[free] = out.x
         res = float(np.linalg.norm(self.residual(u, prm)[free]))
         return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
@@ -549,10 +559,13 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
 def _run(problem, u0, prm, opts):
     if opts["method"] == "newton":
         return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
-    solver = (problem.solve_picard if opts["method"] == "picard"
-              else problem.solve_picard_staggered)
-    return solver(u0, prm, tol=opts["tol"], omega=opts["omega"], aitken=opts["aitken"],
-                  max_iter=opts["picard_max_iter"])
+    if opts["method"] == "picard":
+        return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
+                                    aitken=opts["aitken"], max_iter=opts["picard_max_iter"],
+                                    anderson=int(opts["anderson"]))
+    return problem.solve_picard_staggered(u0, prm, tol=opts["tol"], omega=opts["omega"],
+                                          aitken=opts["aitken"],
+                                          max_iter=opts["picard_max_iter"])
 
 
 def _adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):

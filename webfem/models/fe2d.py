@@ -51,7 +51,7 @@ METHODS = ("newton", "picard")
 #: Default discretisation and solver settings (see :func:`solve`).
 DEFAULTS = dict(entry=40.0, level=0, order=2, width_fine=0.25, symmetry=True,
                 compressible=True, contact=True, method="newton", tol=1e-9, max_iter=40,
-                omega=1.0, aitken=True, picard_max_iter=500, floor=1e-3, adapt=6,
+                omega=1.0, aitken=True, anderson=10, picard_max_iter=500, floor=1e-3, adapt=6,
                 adapt_ratio=1.0, min_cell=2e-3, nodes=None)
 
 
@@ -201,7 +201,7 @@ class FoilBearing2D:
                            steps=[1.0])
 
     def solve_picard(self, u0, prm, tol=1e-9, omega=1.0, aitken=True, max_iter=500,
-                     backtrack=1.5):
+                     backtrack=1.5, anderson=10):
         """Picard with the film's coefficients frozen (see :meth:`fe1d.FoilBearing1D.
         solve_picard`); stops on the coupled residual norm, like Newton."""
         u = self.consistent_pressure(u0, prm)
@@ -219,7 +219,15 @@ class FoilBearing2D:
             return x - solve_linear(A, F)
 
         out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                     norm=lambda r: last["norm"], backtrack=backtrack)
+                     norm=lambda r: last["norm"], backtrack=backtrack, anderson=anderson)
+        if not out.converged and anderson:
+            # Anderson's least squares can lock onto a bad combination: plain relaxation
+            first = out
+            out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
+                         norm=lambda r: last["norm"], backtrack=backtrack)
+            out.iterations += first.iterations
+            out.history = first.history + out.history
+            out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
         u[free] = out.x
         res = float(np.linalg.norm(self.residual(u, prm)[free]))
         return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
@@ -230,7 +238,8 @@ def _run(problem, u0, prm, opts):
     if opts["method"] == "newton":
         return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
     return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
-                                aitken=opts["aitken"], max_iter=opts["picard_max_iter"])
+                                aitken=opts["aitken"], max_iter=opts["picard_max_iter"],
+                                anderson=int(opts["anderson"]))
 
 
 def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarray:
