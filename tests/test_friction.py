@@ -88,3 +88,38 @@ def test_exp1_fast_matches_scipy():
     from webfem.physics.friction import exp1_fast
     x = np.concatenate([np.geomspace(1e-9, 3.0, 2000), np.linspace(3.0, 60.0, 500)])
     assert np.max(np.abs(exp1_fast(x) / exp1(x) - 1.0)) < 1e-12
+
+
+def test_gaussian_contact_matches_quadrature():
+    """Eq. 1 heights: p_c = (E_b/t) int_h^inf (z - h) phi_1(z) dz, exact erfc form."""
+    E, s, t = 175e3, 4e-6, 70e-6
+    for h in (-2e-6, 0.0, 3e-6, 1e-5):
+        num = E / t * quad(lambda z: (z - h) * np.exp(-z * z / (2 * s * s))
+                           / (s * np.sqrt(2 * np.pi)), h, h + 15 * s, epsabs=0, epsrel=1e-12)[0]
+        assert contact_pressure(h, E, s, t, "gaussian") == pytest.approx(num, rel=1e-7)
+    h_c = contact_gap(P_BAR, E, s, t, "gaussian")
+    assert contact_pressure(h_c, E, s, t, "gaussian") == pytest.approx(P_BAR, rel=1e-10)
+    assert 0 < h_c < contact_gap(P_BAR, E, s, t)   # 2.76 um against 4.94 um
+
+
+def test_numeric_average_agrees_with_exact():
+    from webfem.physics.friction import wrap_average_numeric
+    for h_in, h_out in [(30e-6, 20e-6), (22e-6, -30e-6), (15e-6, 1e-6)]:
+        a = wrap_average_linear_gap(h_in, h_out, U_s=17.0, **KW)
+        b = wrap_average_numeric(h_in, h_out, U_s=17.0, **KW)
+        assert float(b["mu"]) == pytest.approx(float(a["mu"]), rel=1e-6)
+        assert float(b["share_mixed"]) == pytest.approx(float(a["share_mixed"]), abs=1e-9)
+
+
+@pytest.mark.parametrize("distribution", ["exponential", "gaussian"])
+def test_continuous_variant_has_no_jumps(distribution):
+    """The paper's mu(h) jumps at h_c and 3 sigma; the continuous variant does not."""
+    h_c = float(contact_gap(P_BAR, 175e3, 4e-6, 70e-6, distribution))
+    for level in (h_c, 12e-6):
+        h = np.array([level * (1 - 1e-9), level * (1 + 1e-9)])
+        cont = local_friction(h, U_s=5.0, variant="continuous", distribution=distribution,
+                              **KW)["mu"]
+        assert cont[0] == pytest.approx(cont[1], abs=1e-6)
+    paper = local_friction(np.array([h_c * (1 - 1e-9), h_c * (1 + 1e-9)]), U_s=5.0,
+                           distribution=distribution, **KW)["mu"]
+    assert abs(paper[1] - paper[0]) > 1e-3

@@ -161,7 +161,8 @@ class Friction(_Section):
     ``variant``: ``"paper"`` reproduces Eqs. 13 and 29 as printed (with their jumps at
     h = h_c and h = 3 sigma); ``"continuous"`` removes the jumps (see
     :mod:`webfem.physics.friction`). ``roughness``: ``"web"`` uses sigma = sigma_w as
-    the paper does, ``"composite"`` uses sqrt(sigma_r^2 + sigma_w^2).
+    the paper does, ``"composite"`` uses sqrt(sigma_r^2 + sigma_w^2). ``distribution``:
+    asperity heights ``"exponential"`` (Eq. 2, the paper's) or ``"gaussian"`` (Eq. 1).
     """
 
     _name = "friction"
@@ -173,6 +174,8 @@ class Friction(_Section):
         "paper", "continuous", doc="Eqs. 13, 29 as printed, or without their jumps"))
     roughness: str = field(default="web", metadata=_choice(
         "web", "composite", doc="sigma = sigma_w (paper) or sqrt(sigma_r^2 + sigma_w^2)"))
+    distribution: str = field(default="exponential", metadata=_choice(
+        "exponential", "gaussian", doc="asperity heights: Eq. 2 (paper) or Eq. 1"))
 
 
 _SECTIONS: dict[str, type[_Section]] = {

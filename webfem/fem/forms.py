@@ -35,9 +35,10 @@ quadrature points and passed as keyword arguments of ``assemble``.
 from __future__ import annotations
 
 import numpy as np
+from scipy.special import erfc
 from skfem import BilinearForm, LinearForm
 
-__all__ = ["coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
+__all__ = ["contact_law", "coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
 
 
 def departure(x, beta):
@@ -49,6 +50,21 @@ def departure(x, beta):
 def in_wrap(x, beta):
     """1 inside the wrap |X| < beta/2, 0 outside (the T/R term of Eq. 16)."""
     return (np.abs(x) < 0.5 * beta).astype(float)
+
+
+def contact_law(H, prm):
+    """Scaled contact pressure Pc(H) = p_c R/T and stiffness -dPc/dH (Eq. 10 or its Gaussian
+    counterpart): ``prm['law']`` 0 exponential, Pc = c exp(-H/S); 1 Gaussian,
+    Pc = c (S/sqrt(2 pi) exp(-H^2/(2 S^2)) - H/2 erfc(H/(S sqrt 2))). ``prm['contact']`` 0
+    switches contact off."""
+    on, c, S = prm["contact"], prm["c"], prm["S"]
+    if prm.get("law", 0) == 1:
+        e = erfc(H / (S * np.sqrt(2.0)))
+        Pc = on * c * (S / np.sqrt(2.0 * np.pi) * np.exp(-0.5 * (H / S) ** 2) - 0.5 * H * e)
+        return Pc, on * c * 0.5 * e
+    with np.errstate(over="ignore"):   # a wild line-search trial: inf, then rejected
+        Pc = on * c * np.exp(-H / S)
+    return Pc, Pc / S
 
 
 def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
@@ -65,8 +81,7 @@ def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
     d = prm["d"]
     rho = 1.0 + d * P
     chi = in_wrap(x, prm["beta"])
-    with np.errstate(over="ignore"):   # a wild line-search trial: inf, then rejected
-        Pc = prm["contact"] * prm["c"] * np.exp(-H / prm["S"])
+    Pc, kc = contact_law(H, prm)
     Hf3 = Hf**3
     return {
         "flux": rho * Hf3 * dP - rho * Hf,          # F_p = flux q'
@@ -76,7 +91,7 @@ def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
         "a_dp": rho * Hf3,                          # d flux / dP'
         "a_w": -above * rho,                        # d flux / dW (through the Couette flux)
         "a_w3": above * 3.0 * rho * Hf**2 * dP,     # d flux / dW (through H^3)
-        "k_c": Pc / prm["S"],                       # -d load / dW (contact stiffness)
+        "k_c": kc,                                  # -d load / dW (contact stiffness)
         "sink": prm["K"] * rho * P if sink else 0.0,           # F_p += sink q
         "a_sink": prm["K"] * rho if sink else 0.0,
         "a_sink_p": prm["K"] * d * P if sink else 0.0,

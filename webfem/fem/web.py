@@ -12,10 +12,9 @@ the 2-D model adds through its transfer matrices (:mod:`webfem.fem.transfer`):
 
 from __future__ import annotations
 
-import numpy as np
 from skfem import BilinearForm, LinearForm
 
-from .forms import departure, in_wrap
+from .forms import contact_law, departure, in_wrap
 
 __all__ = ["web_coefficients", "web_residual", "web_jacobian"]
 
@@ -23,10 +22,9 @@ __all__ = ["web_coefficients", "web_residual", "web_jacobian"]
 def web_coefficients(x, W, prm) -> dict:
     """Contact load and stiffness and the wrap indicator at quadrature points x."""
     H = W + departure(x, prm["beta"])
-    with np.errstate(over="ignore"):
-        Pc = prm["contact"] * prm["c"] * np.exp(-H / prm["S"])
+    Pc, kc = contact_law(H, prm)
     chi = in_wrap(x, prm["beta"])
-    return {"chi": chi, "load": Pc - chi, "k_c": Pc / prm["S"]}
+    return {"chi": chi, "load": Pc - chi, "k_c": kc}
 
 
 @LinearForm

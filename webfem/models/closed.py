@@ -44,7 +44,8 @@ def case_arrays(cases) -> dict[str, np.ndarray]:
     return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
 
 
-def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper"):
+def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper",
+             distribution="exponential"):
     """Closed-form gaps and traction at many operating points at once (arrays broadcast).
 
     Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
@@ -61,14 +62,15 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     h_in = cf.gap_inlet(R, eps, lam)
     h_out = h_in - 2.0 * R * kappa
     avg = wrap_average_linear_gap(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
-                                  sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant)
+                                  sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant,
+                                  distribution=distribution)
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
     return {
         "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
         "h_outlet": np.maximum(h_out, 0.0), "h_min": np.maximum(h_out, 0.0),
         "mu": avg["mu"], "delta_T": delta_T_from_mu(avg["mu"], T, B),
         "lambda": lam, "beta": beta, "eq21_valid": cf.eq21_valid(beta, lam),
-        "eps": eps, "kappa": kappa, "h_c": contact_gap(T / R, E_b, sigma, t),
+        "eps": eps, "kappa": kappa, "h_c": contact_gap(T / R, E_b, sigma, t, distribution),
         "share_boundary": avg["share_boundary"], "share_mixed": avg["share_mixed"],
         "share_fluid": avg["share_fluid"], "regime_code": np.argmax(shares, axis=0),
     }
@@ -80,8 +82,8 @@ def _warnings(case: Case, summary: dict) -> list[str]:
         out.append(f"outside Eq. 21's stated range: beta = {summary['beta']:.3g} (needs > 6), "
                    f"lambda = {summary['lambda']:.3g} (needs > 7); use an FE model")
     if summary["h_c"] <= 0.0:
-        out.append(f"h_c = {summary['h_c']:.3g} m <= 0: asperity contact cannot carry "
-                   f"T/R = {case.p_bar:.4g} Pa (E_b sigma/(2 t) is smaller); mu may be infinite")
+        out.append(f"h_c = {summary['h_c']:.3g} m <= 0: asperity contact at h = 0 cannot "
+                   f"carry T/R = {case.p_bar:.4g} Pa; mu may be infinite")
     if summary["h_outlet"] <= 0.0:
         out.append("Eq. 21 gap reaches 0 in the wrap: the web lands on the roller there "
                    "(clamped h <= 0 -> 0)")
@@ -106,7 +108,8 @@ def solve(case: Case, n_points: int = N_FIELD_POINTS, **options) -> Result:
     if options:
         raise CaseError(f"the closed-form model takes no options, got {sorted(options)}")
     t0 = time.perf_counter()
-    values = evaluate(**case_arrays([case]), variant=case.friction.variant)
+    values = evaluate(**case_arrays([case]), variant=case.friction.variant,
+                      distribution=case.friction.distribution)
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
     R, B = case.roller.radius, case.B
@@ -115,7 +118,8 @@ def solve(case: Case, n_points: int = N_FIELD_POINTS, **options) -> Result:
     local = local_friction(h, R=R, T=case.web.tension, U_s=case.U_slide, eta=case.air.viscosity,
                            E_b=case.web.modulus_thickness, sigma=case.sigma,
                            t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                           C=case.friction.speed_constant, variant=case.friction.variant)
+                           C=case.friction.speed_constant, variant=case.friction.variant,
+                           distribution=case.friction.distribution)
     fields = {"x": x, "h": h, **local}
     return Result(case, summary, fields, {"method": "Eq. 21 + Eqs. 10-13, 28-31, exact average"})
 
@@ -124,10 +128,13 @@ def solve_many(cases) -> list[Result]:
     """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
     cases = list(cases)
     out: list[Result | None] = [None] * len(cases)
-    for variant in {c.friction.variant for c in cases}:
-        idx = [i for i, c in enumerate(cases) if c.friction.variant == variant]
+    kinds = {(c.friction.variant, c.friction.distribution) for c in cases}
+    for variant, distribution in kinds:
+        idx = [i for i, c in enumerate(cases)
+               if (c.friction.variant, c.friction.distribution) == (variant, distribution)]
         t0 = time.perf_counter()
-        values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant)
+        values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant,
+                          distribution=distribution)
         elapsed = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
             out[i] = Result(cases[i], summary_from_arrays(values, j, cases[i], elapsed))

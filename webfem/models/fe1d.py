@@ -27,7 +27,6 @@ True
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, replace
 
@@ -42,7 +41,7 @@ from ..fem.mesh import graded_nodes, line_mesh, refine_nodes
 from ..fem.newton import newton, solve_linear
 from ..fem.picard import picard
 from ..physics.closed_form import eq21_valid
-from ..physics.contact import REGIMES
+from ..physics.contact import REGIMES, contact_gap
 from ..physics.friction import delta_T_from_mu, local_friction
 from ..result import Result
 
@@ -66,7 +65,9 @@ class FoilParameters:
 
     beta wrap length B/eps^(1/3); K = 12 k/(R t eps^(4/3)) permeation; d = T/(R p_a)
     compressibility (0: incompressible); Dn = D/(T (R eps^(1/3))^2) bending; c, S contact
-    pressure Pc = c exp(-H/S); contact 1/0; floor: smallest film thickness in Reynolds.
+    pressure Pc = c exp(-H/S) (exponential heights, ``law`` 0; Gaussian, ``law`` 1, see
+    :func:`webfem.fem.forms.contact_law`); contact 1/0; floor: smallest film thickness in
+    Reynolds; H_c: the scaled gap at which contact alone carries T/R.
     """
 
     beta: float
@@ -77,25 +78,31 @@ class FoilParameters:
     S: float
     contact: float
     floor: float
+    law: int = 0
+    H_c: float = 0.0
 
     @classmethod
     def from_case(cls, case: Case, compressible=True, contact=True, floor=1e-3):
         R, T, eps = case.roller.radius, case.web.tension, case.eps
         w = case.web
+        gaussian = case.friction.distribution == "gaussian"
+        # exponential: Pc = c exp(-H/S); Gaussian: Pc = c (S/sqrt(2 pi) e^(-H^2/2S^2) - ...)
+        c = (w.modulus_thickness * R * case.h_scale / (w.thickness * T) if gaussian else
+             w.modulus_thickness * case.sigma * R / (2.0 * w.thickness * T))
+        h_c = contact_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
+                          case.friction.distribution)
         return cls(
             beta=case.beta,
             K=12.0 * w.permeability / (R * w.thickness * eps ** (4 / 3)),
             d=case.p_bar / case.air.ambient_pressure if compressible else 0.0,
             Dn=w.bending_stiffness / (T * case.x_scale**2),
-            c=w.modulus_thickness * case.sigma * R / (2.0 * w.thickness * T),
-            S=case.sigma / case.h_scale,
-            contact=1.0 if contact else 0.0,
-            floor=floor,
+            c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0, floor=floor,
+            law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
         )
 
     def as_form_args(self) -> dict:
         return dict(beta=self.beta, K=self.K, d=self.d, Dn=self.Dn, c=self.c, S=self.S,
-                    contact=self.contact, floor=self.floor)
+                    contact=self.contact, floor=self.floor, law=self.law)
 
 
 class FoilBearing1D:
@@ -185,7 +192,7 @@ class FoilBearing1D:
         x = self.basis.doflocs[0]
         e = 0.5 * prm.beta
         u[self.iP] = forms.in_wrap(x[self.iP], prm.beta)
-        H_land = max(prm.S * np.log(prm.c), 0.1) if prm.contact and prm.c > 1 else 0.1
+        H_land = max(prm.H_c, 0.1) if prm.contact else 0.1
         xn = x[self.iW]
         X0, X1 = self.X[0], self.X[-1]
 
@@ -389,7 +396,8 @@ def _local(case: Case, h):
     return local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
                           eta=case.air.viscosity, E_b=case.web.modulus_thickness,
                           sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                          C=case.friction.speed_constant, variant=case.friction.variant)
+                          C=case.friction.speed_constant, variant=case.friction.variant,
+                          distribution=case.friction.distribution)
 
 
 def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: float,
@@ -405,7 +413,7 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
     mu = float(np.sum(loc["mu"] * wts) / prm.beta)
     shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
     Pf = problem.pressure(u, pts)
-    Pc = prm.contact * prm.c * np.exp(-h / Hs / prm.S)
+    Pc = forms.contact_law(h / Hs, prm.as_form_args())[0]
     contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
     Hmin, Xmin = _minimum(problem, u, prm)
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
@@ -420,7 +428,7 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
         "converged": bool(info["converged"]), "iterations": int(info["iterations"]),
         "n_dofs": int(problem.n_dofs), "solve_time_s": elapsed,
         "residual": float(info["residual"]),
-        "h_c": float(case.sigma * math.log(prm.c)), "sigma": case.sigma,
+        "h_c": float(prm.H_c * Hs), "sigma": case.sigma,
         "share_boundary": shares[0], "share_mixed": shares[1], "share_fluid": shares[2],
         "contact_share": contact_share,
         "eps": case.eps, "kappa": case.kappa, "U": case.U, "U_slide": case.U_slide,
@@ -460,7 +468,7 @@ def _node_fields(case: Case, problem: FoilBearing1D, u, prm: FoilParameters) -> 
     p_rel = P * case.p_bar
     return {"x": X * case.x_scale, "h": h, "w": h - forms.departure(X, prm.beta) * Hs,
             "p_rel": p_rel, "p": p_rel + case.air.ambient_pressure,
-            "p_contact": prm.contact * prm.c * np.exp(-H / prm.S) * case.p_bar,
+            "p_contact": forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
             "in_wrap": forms.in_wrap(X, prm.beta), **loc}
 
 
@@ -585,7 +593,7 @@ def _adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
         scale = np.minimum(scale, np.sqrt(Hc**3 / prm.K))
     if prm.contact:
         with np.errstate(all="ignore"):
-            scale = np.minimum(scale, np.sqrt(prm.S / (prm.c * np.exp(-Hc / prm.S))))
+            scale = np.minimum(scale, 1.0 / np.sqrt(forms.contact_law(Hc, prm.as_form_args())[1]))
     dx = np.diff(X)
     mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
     if not mark.any() or X.size + mark.sum() > max_cells:

@@ -338,6 +338,6 @@ def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> dict:
         "points": np.vstack([pts * case.x_scale, np.zeros(pts.shape[1])]).T,
         "quads": problem.mesh.t.T.copy(),
         "p": p_rel + case.air.ambient_pressure, "p_rel": p_rel, "h": h,
-        "p_contact": prm.contact * prm.c * np.exp(-H / prm.S) * case.p_bar,
+        "p_contact": forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
         "chi_c": loc["chi_c"], "mu": loc["mu"], "regime": loc["regime"].astype(float),
     }

@@ -1,7 +1,16 @@
-"""Asperity contact between a rough web and a roller (paper's Eqs. 2, 10-13).
+"""Asperity contact between a rough web and a roller (paper's Eqs. 1-2, 10-13).
 
-Rigid asperities with exponential height density phi(z) = exp(-z/sigma) / (2 sigma) sit on a
-linear-spring base of stiffness E_b / t. All functions broadcast over numpy arrays.
+Rigid asperities sit on a linear-spring base of stiffness E_b / t; the mean contact pressure
+at separation h is p_c(h) = (E_b / t) int_h^inf (z - h) phi(z) dz. Two height densities:
+
+* ``"exponential"`` (Eq. 2, the paper's choice): phi = exp(-z/sigma) / (2 sigma), giving
+  p_c = E_b sigma / (2 t) exp(-h/sigma) (Eq. 10) and h_c = sigma ln(E_b sigma / (2 t pbar))
+  (Eq. 11);
+* ``"gaussian"`` (Eq. 1): phi = exp(-z^2 / (2 sigma^2)) / (sigma sqrt(2 pi)), giving exactly
+  p_c = (E_b / t) [sigma / sqrt(2 pi) exp(-h^2 / (2 sigma^2)) - (h / 2) erfc(h / (sigma sqrt 2))]
+  and h_c from p_c(h_c) = pbar by Newton's method.
+
+All functions broadcast over numpy arrays.
 
 Examples
 --------
@@ -12,33 +21,67 @@ Examples
 from __future__ import annotations
 
 import numpy as np
+from scipy.special import erfc
 
 __all__ = ["contact_pressure", "contact_pressure_derivative", "contact_gap", "load_ratio",
-           "REGIMES", "regime_code"]
+           "REGIMES", "DISTRIBUTIONS", "regime_code"]
+
+#: Asperity height densities: the paper's Eq. 2 (default) and Eq. 1.
+DISTRIBUTIONS = ("exponential", "gaussian")
+_SQ2, _SQ2PI = np.sqrt(2.0), np.sqrt(2.0 * np.pi)
+
+
+def _check(distribution):
+    if distribution not in DISTRIBUTIONS:
+        raise ValueError(f"distribution = {distribution!r} is not valid: must be one of "
+                         + ", ".join(repr(d) for d in DISTRIBUTIONS))
 
 #: Regime names by code: 0 boundary (h < h_c), 1 mixed (h_c <= h <= 3 sigma), 2 fluid film.
 REGIMES = ("boundary", "mixed", "fluid")
 
 
-def contact_pressure(h, E_b, sigma, t):
-    """Mean asperity contact pressure p_c = E_b sigma / (2 t) exp(-h / sigma) [Pa] (Eq. 10).
+def contact_pressure(h, E_b, sigma, t, distribution="exponential"):
+    """Mean asperity contact pressure p_c(h) [Pa] (Eq. 10 for the exponential density).
 
     Eq. 8 as printed integrates (h - z); the load is positive for (z - h), which gives Eq. 10.
     """
-    return E_b * sigma / (2.0 * t) * np.exp(-np.asarray(h, dtype=float) / sigma)
+    h = np.asarray(h, dtype=float)
+    if distribution == "exponential":
+        with np.errstate(over="ignore"):
+            return E_b * sigma / (2.0 * t) * np.exp(-h / sigma)
+    _check(distribution)
+    return E_b / t * (sigma / _SQ2PI * np.exp(-0.5 * (h / sigma) ** 2)
+                      - 0.5 * h * erfc(h / (sigma * _SQ2)))
 
 
-def contact_pressure_derivative(h, E_b, sigma, t):
-    """d p_c / d h [Pa/m]."""
-    return -contact_pressure(h, E_b, sigma, t) / sigma
+def contact_pressure_derivative(h, E_b, sigma, t, distribution="exponential"):
+    """d p_c / d h [Pa/m] (negative: contact relaxes as the gap opens)."""
+    h = np.asarray(h, dtype=float)
+    if distribution == "exponential":
+        return -contact_pressure(h, E_b, sigma, t) / sigma
+    _check(distribution)
+    return -0.5 * E_b / t * erfc(h / (sigma * _SQ2))
 
 
-def contact_gap(p_bar, E_b, sigma, t):
+def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
     """Gap h_c at which contact alone carries the wrap pressure p_bar = T/R [m] (Eq. 11)."""
-    return sigma * np.log(E_b * sigma / (2.0 * t * np.asarray(p_bar, dtype=float)))
+    p_bar = np.asarray(p_bar, dtype=float)
+    h = sigma * np.log(E_b * sigma / (2.0 * t * p_bar))
+    if distribution == "exponential":
+        return h
+    _check(distribution)
+    # Newton on log p_c(h) = log p_bar (log p_c is concave and decreasing: monotone steps)
+    for _ in range(60):
+        pc = contact_pressure(h, E_b, sigma, t, distribution)
+        step = (np.log(pc) - np.log(p_bar)) / (
+            contact_pressure_derivative(h, E_b, sigma, t, distribution) / pc)
+        h = h - step
+        if np.all(np.abs(step) <= 1e-14 * sigma):
+            break
+    return h
 
 
-def load_ratio(h, p_bar, E_b, sigma, t, variant="paper"):
+def load_ratio(h, p_bar, E_b, sigma, t, variant="paper", distribution="exponential"):
     """Share chi_c of the wrap load carried by asperity contact (Eq. 13); chi_f = 1 - chi_c.
 
     ``variant="paper"``: 1 below h_c, p_c/p_bar up to 3 sigma, 0 above (jumps at 3 sigma).
@@ -46,11 +89,11 @@ def load_ratio(h, p_bar, E_b, sigma, t, variant="paper"):
     A landed web (h <= 0) is in full contact in both.
     """
     h = np.asarray(h, dtype=float)
-    ratio = np.minimum(contact_pressure(h, E_b, sigma, t) / p_bar, 1.0)
+    ratio = np.minimum(contact_pressure(h, E_b, sigma, t, distribution) / p_bar, 1.0)
     if variant == "continuous":
         chi = ratio
     elif variant == "paper":
-        h_c = contact_gap(p_bar, E_b, sigma, t)
+        h_c = contact_gap(p_bar, E_b, sigma, t, distribution)
         chi = np.where(h < h_c, 1.0, np.where(h <= 3.0 * sigma, ratio, 0.0))
     else:
         raise ValueError(f"variant = {variant!r} is not valid: must be 'paper' or 'continuous'")

@@ -23,6 +23,7 @@ from scipy.special import exp1
 from .contact import contact_gap, load_ratio, regime_code
 
 __all__ = ["mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
+           "wrap_average_numeric",
            "delta_T_from_mu", "mu_from_delta_T"]
 
 
@@ -50,7 +51,8 @@ def mu_film(h, eta, R, U_s, T):
         return np.where(h > 0.0, eta * R * U_s / (np.where(h > 0.0, h, 1.0) * T), np.inf)
 
 
-def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper"):
+def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper",
+                   distribution="exponential"):
     """Local load shares and friction at gaps ``h`` [m].
 
     Returns a dict of arrays: ``chi_c``, ``mu_c``, ``mu_f``, ``mu`` and ``regime`` (codes of
@@ -59,8 +61,8 @@ def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper
     """
     h = np.asarray(h, dtype=float)
     p_bar = T / R
-    h_c = contact_gap(p_bar, E_b, sigma, t)
-    chi_c = load_ratio(h, p_bar, E_b, sigma, t, variant)
+    h_c = contact_gap(p_bar, E_b, sigma, t, distribution)
+    chi_c = load_ratio(h, p_bar, E_b, sigma, t, variant, distribution)
     mu_c = mu_asperity(h, h_c, U_s, mu_cc, C, variant)
     mu_f = mu_film(h, eta, R, U_s, T)
     chi_f = 1.0 - chi_c
@@ -97,7 +99,7 @@ def exp1_fast(x):
 
 
 def wrap_average_linear_gap(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
-                            variant="paper"):
+                            variant="paper", distribution="exponential"):
     """Exact wrap average of mu for a gap linear in x from ``h_in`` to ``h_out`` (clamped >= 0).
 
     The Eq. 21 gap is linear along the wrap, so the average is an exact integral over h:
@@ -105,10 +107,17 @@ def wrap_average_linear_gap(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc
     mixed regime, logarithms in the fluid regime. Also returns the wrap shares of the three
     regimes. Infinite where h_c <= 0 and the film thins to zero (contact cannot carry T/R).
 
+    The Gaussian height density (``distribution="gaussian"``) has no such closed form; its
+    average is integrated numerically (:func:`wrap_average_numeric`).
+
     Returns
     -------
     dict with ``mu`` and ``share_boundary``, ``share_mixed``, ``share_fluid``.
     """
+    if distribution != "exponential":
+        return wrap_average_numeric(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
+                                    sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant,
+                                    distribution=distribution)
     h_in, h_out = np.broadcast_arrays(np.asarray(h_in, float), np.asarray(h_out, float))
     p_bar = T / R
     c = E_b * sigma / (2.0 * t * p_bar)          # chi_c = c exp(-h/sigma) in the mixed regime
@@ -159,6 +168,40 @@ def wrap_average_linear_gap(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc
                      - s_b, 0.0)
     return {"mu": mu, "share_boundary": s_b, "share_mixed": s_m,
             "share_fluid": np.maximum(1.0 - s_b - s_m, 0.0)}
+
+
+def wrap_average_numeric(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
+                         variant="paper", distribution="exponential", n=48):
+    """Wrap average of mu for a linear gap by Gauss-Legendre quadrature (``n`` points on each
+    piece between the regime boundaries h = 0, h_c and 3 sigma, so the jumps sit on piece ends).
+
+    The film term mu_f ~ 1/h makes the average infinite where the film thins to 0 without
+    contact taking the load (h_c <= 0), as in the exact formula.
+    """
+    h_in, h_out = np.broadcast_arrays(np.asarray(h_in, float), np.asarray(h_out, float))
+    h_c = contact_gap(T / R, E_b, sigma, t, distribution)
+    span = h_out - h_in
+    flat = np.abs(span) < 1e-300
+    cuts = [np.zeros_like(h_in), np.ones_like(h_in)]
+    for level in (0.0, h_c, 3.0 * sigma):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s_cut = np.where(flat, 0.0, (level - h_in) / np.where(flat, 1.0, span))
+        cuts.append(np.clip(s_cut, 0.0, 1.0))
+    cuts = np.sort(np.stack(cuts), axis=0)
+    g, gw = np.polynomial.legendre.leggauss(n)
+    total = np.zeros_like(h_in)
+    shares = np.zeros((3,) + h_in.shape)
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        s = 0.5 * (a + b)[..., None] + 0.5 * (b - a)[..., None] * g
+        wts = 0.5 * (b - a)[..., None] * gw
+        h = np.maximum(h_in[..., None] + span[..., None] * s, 0.0)
+        loc = local_friction(h, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b, sigma=sigma, t=t,
+                             mu_cc=mu_cc, C=C, variant=variant, distribution=distribution)
+        total += np.sum(loc["mu"] * wts, axis=-1)
+        for k in range(3):
+            shares[k] += np.sum((loc["regime"] == k) * wts, axis=-1)
+    return {"mu": total, "share_boundary": shares[0], "share_mixed": shares[1],
+            "share_fluid": shares[2]}
 
 
 def delta_T_from_mu(mu, T, B):
