@@ -150,6 +150,68 @@ def _cmd_mesh(args) -> int:
     return 0
 
 
+def _cmd_traction_loss(args) -> int:
+    from .traction import traction_loss_speed
+
+    case = load_case(args.case, _overrides(args.set))
+    out = traction_loss_speed(case, args.mu_min, model=args.model,
+                              speed_range=(args.min_speed, args.max_speed), **_options(args.opt))
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        print(f"webfem traction-loss ({out['model']}): {out['message']}; peak mu "
+              f"{out['mu_peak']:.4f} at {out['speed_peak']:.3g} m/s; {out['evaluations']} solves")
+    if args.chart:
+        import numpy as np
+
+        from .io.charts import traction_loss_chart
+        from .traction import traction_loss_table
+
+        models = ["closed-form"] + ([args.model] if args.model != "closed-form" else [])
+        rows = traction_loss_table(case, args.mu_min, models, n=args.points,
+                                   progress=None if args.quiet else _Progress(),
+                                   **_options(args.opt))
+        curves = {}
+        for model in models:
+            speeds = np.geomspace(args.min_speed, args.max_speed, 40)
+            res, prev = [], None
+            for u in speeds:
+                kw = {"initial": prev} if prev is not None and model != "closed-form" else {}
+                prev = solve(case.updated({"roller.speed": float(u)}), model=model, **kw,
+                             **(_options(args.opt) if model != "closed-form" else {}))
+                res.append(prev["mu"])
+            curves[model] = (speeds, res)
+        path = traction_loss_chart(rows, curves, args.mu_min,
+                                   Path(args.chart) / f"{Path(args.case).stem}_traction_loss.png")
+        print(f"wrote {path}", file=sys.stderr)
+    return 0 if out["speed"] is not None else 4
+
+
+def _cmd_calibrate(args) -> int:
+    from .calibrate import calibrate, read_measurements
+
+    case = load_case(args.case, _overrides(args.set))
+    rows = read_measurements(args.data)
+    fit = calibrate(rows, case, model=args.model, fit_sigma=args.fit_sigma,
+                    **_options(args.opt))
+    if args.json:
+        keep = ("model", "measured", "estimates", "stderr", "ci95", "rms", "dof", "converged")
+        out = {k: fit[k] for k in keep}
+        out["residuals"] = fit["residuals"].tolist()
+        print(json.dumps(out, indent=2))
+    else:
+        print(f"webfem calibrate ({fit['model']}, {len(rows)} rows of {fit['measured']}):")
+        for k, v in fit["estimates"].items():
+            print(f"  {k:15s} = {v:.6g} +- {fit['ci95'][k]:.3g} (95 %), std. error "
+                  f"{fit['stderr'][k]:.3g}")
+        print(f"  residual rms {fit['rms']:.4g}, {fit['dof']} degrees of freedom")
+    if args.out:
+        from .io.charts import calibration_chart
+        path = calibration_chart(fit, Path(args.out) / f"{Path(args.data).stem}_calibration.png")
+        print(f"wrote {path}", file=sys.stderr)
+    return 0 if fit["converged"] else 3
+
+
 def _cmd_keys(args) -> int:
     import dataclasses
     from .case import _SECTIONS
@@ -219,6 +281,33 @@ def build_parser() -> argparse.ArgumentParser:
     common(p)
     p.add_argument("--out", required=True, help="output folder")
     p.set_defaults(func=_cmd_mesh)
+
+    p = sub.add_parser("traction-loss", help="roller speed at which mu falls below a threshold")
+    common(p)
+    p.add_argument("--mu-min", type=float, required=True, help="friction threshold, e.g. 0.1")
+    p.add_argument("--min-speed", type=float, default=0.5, help="scan from (m/s, default 0.5)")
+    p.add_argument("--max-speed", type=float, default=100.0, help="scan to (m/s, default 100)")
+    p.add_argument("--json", action="store_true",
+                   help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
+                        "speed_peak, bracket, evaluations, message")
+    p.add_argument("--chart", metavar="DIR",
+                   help="also chart the traction-loss speed against T, B, L and R (closed "
+                        "form and --model) into DIR")
+    p.add_argument("--points", type=int, default=5, help="points per parameter in the chart")
+    p.add_argument("--quiet", action="store_true", help="no progress line")
+    p.set_defaults(func=_cmd_traction_loss)
+
+    p = sub.add_parser("calibrate", help="fit mu_cc and C (and sigma) to measured traction")
+    p.add_argument("data", help="CSV: roller_speed, tension, wrap_deg (or any case key) and "
+                                "delta_T [N/m] or mu per row")
+    p.add_argument("--case", required=True, help="case TOML for everything the rows leave out")
+    p.add_argument("--set", action="append", metavar="SECTION.KEY=VALUE")
+    p.add_argument("--model", default="closed-form", choices=sorted(MODELS))
+    p.add_argument("--opt", action="append", metavar="KEY=VALUE")
+    p.add_argument("--fit-sigma", action="store_true", help="also fit the web roughness sigma")
+    p.add_argument("--json", action="store_true", help="estimates, errors and residuals as JSON")
+    p.add_argument("--out", metavar="DIR", help="write the measured-against-predicted chart")
+    p.set_defaults(func=_cmd_calibrate)
 
     p = sub.add_parser("keys", help="list the case TOML keys with units and defaults")
     p.set_defaults(func=_cmd_keys)

@@ -12,7 +12,7 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-__all__ = ["sweep_chart"]
+__all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
@@ -84,3 +84,71 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     finally:
         plt.close(fig)
     return path
+
+
+def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path) -> Path:
+    """Five panels: mu against roller speed with the threshold (the traction-loss speed is
+    where each curve falls through it), then the traction-loss speed against tension, wrap,
+    width and radius, one line per model. ``mu_curves``: model -> (speeds, mu)."""
+    from ..traction import CHART_PARAMETERS
+
+    fig, axes = plt.subplots(1, 5, figsize=(17, 3.8), constrained_layout=True)
+    ax = axes[0]
+    for model, (u, mu) in mu_curves.items():
+        ax.plot(u, mu, label=model)
+    ax.axhline(mu_min, color="k", lw=0.8, ls="--", label=f"mu_min = {mu_min:g}")
+    ax.set_xlabel("roller speed U_r [m/s]")
+    ax.set_ylabel("mu [-]")
+    ax.set_title("base case", fontsize=9)
+    ax.legend(fontsize=7)
+    for ax, (key, label, _) in zip(axes[1:], CHART_PARAMETERS):
+        for model in dict.fromkeys(r["model"] for r in rows):
+            sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
+            ax.plot([r["value"] for r in sel],
+                    [np.nan if r["speed"] is None else r["speed"] for r in sel], "o-",
+                    label=model, ms=3)
+        ax.set_xlabel(label)
+        ax.set_ylabel("traction-loss speed [m/s]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Roller speed at which mu falls below {mu_min:g}", fontsize=10)
+    return _save(fig, path)
+
+
+def _save(fig, path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=path.stem, suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+    finally:
+        plt.close(fig)
+    return path
+
+
+def calibration_chart(fit: dict, path) -> Path:
+    """Measured against predicted (with the 1:1 line) and the residuals against roller speed."""
+    obs, pred = np.asarray(fit["observed"]), np.asarray(fit["predicted"])
+    speed = [c.roller.speed for c in fit["cases"]]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    a.plot(obs, pred, "o", ms=4)
+    lim = [min(obs.min(), pred.min()), max(obs.max(), pred.max())]
+    a.plot(lim, lim, "k-", lw=0.8)
+    name = "delta_T [N/m]" if fit["measured"] == "delta_T" else "mu [-]"
+    a.set_xlabel(f"measured {name}")
+    a.set_ylabel(f"predicted {name} ({fit['model']})")
+    est = ", ".join(f"{k} = {v:.4g} +- {fit['ci95'][k]:.2g}" for k, v in fit["estimates"].items())
+    a.set_title(est + " (95 %)", fontsize=8)
+    b.plot(speed, fit["residuals"], "o", ms=4)
+    b.axhline(0.0, color="k", lw=0.8)
+    b.set_xlabel("roller speed [m/s]")
+    b.set_ylabel(f"predicted - measured {name}")
+    b.set_title(f"rms {fit['rms']:.3g}, {fit['dof']} degrees of freedom", fontsize=8)
+    for ax in (a, b):
+        ax.grid(True, alpha=0.3)
+    return _save(fig, path)

@@ -450,7 +450,8 @@ def _summary(case: Case, problem, u, prm: FoilParameters, info: dict, elapsed: f
             "(infinitely wide) model ignores; its gap is too large")
     summary["adapt_rounds"] = info.get("adapt_rounds", 0)
     summary["solver_message"] = info.get("reason", "")
-    diagnostics = {"history": info.get("history", []), "reason": info.get("reason", ""),
+    diagnostics = {"wrap_h": h, "wrap_w": wts / prm.beta,   # for re-evaluating friction
+                   "history": info.get("history", []), "reason": info.get("reason", ""),
                    "continuation": info.get("steps", []), "options": dict(opts)}
     if "omegas" in info:
         diagnostics["omegas"] = info["omegas"]
