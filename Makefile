@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 OUT ?= out
 
-.PHONY: run test test-slow bench clean meshes
+.PHONY: run test test-slow bench clean meshes figures
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -40,3 +40,14 @@ bench: $(STAMP)
 
 clean:
 	rm -rf $(OUT) .pytest_cache
+
+# the paper's four figure families (closed form beside the 2-D FE model), the traction-loss
+# chart and the friction-model variants, into docs/figures (about 20 minutes on 2 cores)
+FIG_MODEL ?= fe2d
+figures: $(STAMP)
+	for f in fig10_wrap fig11_tension fig12_width fig13_radius; do \
+	  $(VENV)/bin/webfem sweep cases/$$f.toml --model $(FIG_MODEL) --num 24 --log --workers 2 \
+	    --out docs/figures --quiet || exit 1; done
+	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
+	  --chart docs/figures --points 4 --quiet
+	$(PY) -m webfem.studies.variants --out docs/figures --model $(FIG_MODEL)

@@ -22,9 +22,14 @@ def _fe2d(case: Case, **options) -> Result:
     return fe2d.solve(case, **options)
 
 
+def _auto(case: Case, **options) -> Result:
+    from .models import auto
+    return auto.solve(case, **options)
+
+
 #: Model names accepted by :func:`solve`, ``--model`` and sweeps.
 MODELS: dict[str, Callable[..., Result]] = {"closed-form": closed.solve, "fe1d": _fe1d,
-                                            "fe2d": _fe2d}
+                                            "fe2d": _fe2d, "auto": _auto}
 
 
 def _model(name: str) -> Callable[..., Result]:

@@ -93,6 +93,15 @@ def _cmd_sweep(args) -> int:
     from .sweeps import run
 
     spec = load_sweep(args.case, _overrides(args.set))
+    if args.num:
+        import dataclasses
+
+        import numpy as np
+        if args.num < 1:
+            raise CaseError(f"--num {args.num} is out of range: must be >= 1")
+        spacing = np.geomspace if min(spec.values) > 0 and args.log else np.linspace
+        spec = dataclasses.replace(spec, values=tuple(
+            spacing(min(spec.values), max(spec.values), args.num).tolist()))
     out = Path(args.out)
     stem = Path(args.case).stem
     where = ("Dask " + args.dask) if args.dask else (
@@ -268,6 +277,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quiet", action="store_true", help="no progress line")
     p.add_argument("--vtu", metavar="DIR",
                    help="also write VTU files per point and a .pvd collection per series")
+    p.add_argument("--num", type=int, help="override the number of swept values (same range)")
+    p.add_argument("--log", action="store_true", help="with --num: logarithmic spacing")
     p.add_argument("--workers", type=int, default=1,
                    help="local worker processes (default 1: serial with continuation from "
                         "point to point; > 1: independent points in parallel)")

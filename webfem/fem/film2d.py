@@ -21,18 +21,20 @@ from __future__ import annotations
 import numpy as np
 from skfem import BilinearForm, LinearForm
 
+from .forms import film_gap
+
 __all__ = ["film_coefficients", "film_residual", "film_jacobian"]
 
 
 def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     """Arrays for :func:`film_residual` / :func:`film_jacobian` and the web coupling.
 
-    ``H`` is the gap at the quadrature points (floored at ``prm['floor']``), ``P, PX, PZ`` the
+    ``H`` is the gap at the quadrature points (floored smoothly at ``prm['floor']``, see
+    :func:`webfem.fem.forms.film_gap`), ``P, PX, PZ`` the
     pressure and its gradient there. ``newton=False`` freezes rho = 1 + d P and H^3 (Picard).
     """
     d, K = prm["d"], prm["K"]
-    above = (H > prm["floor"]).astype(float)
-    Hf = np.maximum(H, prm["floor"])
+    Hf, above = film_gap(H, prm["floor"])
     rho = 1.0 + d * P
     Hf3 = Hf**3
     nt = 1.0 if newton else 0.0

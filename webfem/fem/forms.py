@@ -25,8 +25,9 @@ Weak residuals (test functions q for P, v for W; boundary terms vanish by the co
     F_p = int (1 + d P) H^3 P' q' - (1 + d P) H q' + K (1 + d P) P q
     F_w = int W' v' + Dn (W'' - chi) v'' - (P + Pc(H) - chi) v
 
-and their exact Jacobian. The film uses max(H, H_floor) so that a landed web cannot make
-the film thickness vanish; with contact on, H stays well above the floor.
+and their exact Jacobian. The film uses a smooth maximum of H and a floor H_f (a fraction of
+the roughness; :func:`film_gap`): where the web rests on its asperities air still seeps
+through the roughness, and a film that vanished would make the Reynolds operator singular.
 
 The state enters the forms through :func:`coefficients`, evaluated once per assembly at the
 quadrature points and passed as keyword arguments of ``assemble``.
@@ -38,7 +39,7 @@ import numpy as np
 from scipy.special import erfc
 from skfem import BilinearForm, LinearForm
 
-__all__ = ["contact_law", "coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
+__all__ = ["film_gap", "contact_law", "coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
 
 
 def departure(x, beta):
@@ -50,6 +51,14 @@ def departure(x, beta):
 def in_wrap(x, beta):
     """1 inside the wrap |X| < beta/2, 0 outside (the T/R term of Eq. 16)."""
     return (np.abs(x) < 0.5 * beta).astype(float)
+
+
+def film_gap(H, floor):
+    """Smooth maximum of H and ``floor``: f + ((H - f) + sqrt((H - f)^2 + f^2)) / 2, i.e. H
+    where H >> f, f/2 + ... near it and f where H << f; returns it and its derivative."""
+    d = H - floor
+    root = np.sqrt(d * d + floor * floor)
+    return floor + 0.5 * (d + root), 0.5 * (1.0 + d / root)
 
 
 def contact_law(H, prm):
@@ -76,8 +85,7 @@ def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
     is then assembled apart with nodal quadrature, :func:`sink_residual`).
     """
     H = W + departure(x, prm["beta"])
-    Hf = np.maximum(H, prm["floor"])
-    above = (H > prm["floor"]).astype(float)
+    Hf, above = film_gap(H, prm["floor"])
     d = prm["d"]
     rho = 1.0 + d * P
     chi = in_wrap(x, prm["beta"])

@@ -55,8 +55,8 @@ METHODS = ("newton", "picard", "picard-staggered")
 #: Default discretisation and solver settings (see :func:`solve`).
 DEFAULTS = dict(entry=40.0, level=0, order=2, compressible=True, contact=True,
                 method="newton", tol=1e-9, max_iter=60, omega=1.0, aitken=True, anderson=10,
-                picard_max_iter=500, floor=1e-3, adapt=6, adapt_ratio=1.0,
-                min_cell=2e-3, nodes=None)
+                picard_max_iter=500, floor=0.1, adapt=6, adapt_ratio=1.0,
+                min_cell=2e-3, nodes=None, continuation=True, backtrack=1.5)
 
 
 @dataclass(frozen=True)
@@ -66,8 +66,9 @@ class FoilParameters:
     beta wrap length B/eps^(1/3); K = 12 k/(R t eps^(4/3)) permeation; d = T/(R p_a)
     compressibility (0: incompressible); Dn = D/(T (R eps^(1/3))^2) bending; c, S contact
     pressure Pc = c exp(-H/S) (exponential heights, ``law`` 0; Gaussian, ``law`` 1, see
-    :func:`webfem.fem.forms.contact_law`); contact 1/0; floor: smallest film thickness in
-    Reynolds; H_c: the scaled gap at which contact alone carries T/R.
+    :func:`webfem.fem.forms.contact_law`); contact 1/0; floor: the scaled film thickness
+    below which Reynolds sees a smooth floor (from_case takes it as a fraction of sigma);
+    H_c: the scaled gap at which contact alone carries T/R.
     """
 
     beta: float
@@ -82,7 +83,7 @@ class FoilParameters:
     H_c: float = 0.0
 
     @classmethod
-    def from_case(cls, case: Case, compressible=True, contact=True, floor=1e-3):
+    def from_case(cls, case: Case, compressible=True, contact=True, floor=0.1):
         R, T, eps = case.roller.radius, case.web.tension, case.eps
         w = case.web
         gaussian = case.friction.distribution == "gaussian"
@@ -96,7 +97,8 @@ class FoilParameters:
             K=12.0 * w.permeability / (R * w.thickness * eps ** (4 / 3)),
             d=case.p_bar / case.air.ambient_pressure if compressible else 0.0,
             Dn=w.bending_stiffness / (T * case.x_scale**2),
-            c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0, floor=floor,
+            c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0,
+            floor=floor * case.sigma / case.h_scale,
             law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
         )
 
@@ -514,7 +516,10 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     ``order`` 1 or 2 (pressure element); ``compressible``; ``contact`` (asperity contact in
     the web equilibrium); ``method`` "newton" or "picard"; ``tol`` (Newton: residual 2-norm;
     Picard: web update max-norm, scaled units); ``max_iter``; ``omega`` and ``aitken``
-    (Picard relaxation); ``floor`` smallest scaled film thickness in Reynolds.
+    (Picard relaxation), ``anderson`` (Picard acceleration depth, 0 off), ``backtrack``
+    (Picard's step-undo factor, 0 off); ``continuation`` (Newton's fallback, on by default);
+    ``floor``: the film thickness floor in Reynolds, as a fraction of the roughness sigma
+    (default 0.1: air still seeps through the roughness where the web rests on it).
     ``nodes``: starting mesh nodes in scaled X (instead of webfem's graded mesh; the API's
     ``mesh=PATH`` option reads them from a mesh file).
     ``initial``: a previous fe1d result to start from (continuation in a sweep).
@@ -567,11 +572,13 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
 
 def _run(problem, u0, prm, opts):
     if opts["method"] == "newton":
-        return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
+        return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"],
+                                    continuation=bool(opts["continuation"]))
     if opts["method"] == "picard":
         return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
                                     aitken=opts["aitken"], max_iter=opts["picard_max_iter"],
-                                    anderson=int(opts["anderson"]))
+                                    anderson=int(opts["anderson"]),
+                                    backtrack=opts["backtrack"] or None)
     return problem.solve_picard_staggered(u0, prm, tol=opts["tol"], omega=opts["omega"],
                                           aitken=opts["aitken"],
                                           max_iter=opts["picard_max_iter"])

@@ -51,8 +51,8 @@ METHODS = ("newton", "picard")
 #: Default discretisation and solver settings (see :func:`solve`).
 DEFAULTS = dict(entry=40.0, level=0, order=2, width_fine=0.25, symmetry=True,
                 compressible=True, contact=True, method="newton", tol=1e-9, max_iter=40,
-                omega=1.0, aitken=True, anderson=10, picard_max_iter=500, floor=1e-3, adapt=6,
-                adapt_ratio=1.0, min_cell=2e-3, nodes=None)
+                omega=1.0, aitken=True, anderson=10, picard_max_iter=500, floor=0.1, adapt=6,
+                adapt_ratio=1.0, min_cell=2e-3, nodes=None, backtrack=1.5)
 
 
 class FoilBearing2D:
@@ -239,7 +239,42 @@ def _run(problem, u0, prm, opts):
         return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
     return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
                                 aitken=opts["aitken"], max_iter=opts["picard_max_iter"],
-                                anderson=int(opts["anderson"]))
+                                anderson=int(opts["anderson"]),
+                                backtrack=opts["backtrack"] or None)
+
+
+def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict):
+    """Newton from a web 16 times wider (close to the 1-D solution it starts from) down to
+    the true width. The meshes differ only by the scaling of Z, so a state carries over as it
+    is (the pressure as a function of Z / lambda); a failed step is halved (in log width)."""
+    scaled = {}
+
+    def at(f):
+        if f not in scaled:
+            scaled[f] = FoilBearing2D(problem.X, problem.Z * f, order=problem.order)
+        return scaled[f]
+
+    its, hist = failed["iterations"], list(failed["history"])
+    f_prev, f = None, 16.0
+    u = at(f).start_from_line(p1, u1, prm)
+    while True:
+        v, info = at(f).solve_newton(u, prm, tol=opts["tol"], max_iter=opts["max_iter"])
+        its += info["iterations"]
+        hist += info["history"]
+        if info["converged"]:
+            u, f_prev = v, f
+            if f == 1.0:
+                info.update(iterations=its, history=hist,
+                            reason=info["reason"] + " (after continuation in width)")
+                return u, info
+            f = max(1.0, f / 4.0)
+        else:
+            if f_prev is None or f_prev / f < 1.01:
+                info.update(iterations=its, history=hist,
+                            reason=f"width continuation failed at {f:.3g} x the width: "
+                                   + info["reason"])
+                return v, info
+            f = float(np.sqrt(f * f_prev))
 
 
 def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarray:
@@ -291,6 +326,8 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     # start from the infinitely wide solution (a sweep continues through the 1-D part)
     u0 = problem.start_from_line(p1, u1, prm)
     u, info = _run(problem, u0, prm, opts)
+    if not info["converged"] and opts["method"] == "newton":
+        u, info = _width_continuation(problem, p1, u1, prm, opts, info)
     info["iterations"] += one["iterations"]
     rounds = 0
     while info["converged"] and rounds < opts["adapt"]:

@@ -1,0 +1,123 @@
+"""Automatic model choice: the cheapest model whose estimated error meets the tolerance.
+
+Candidates, cheapest first, each with an error estimate against the converged 2-D solution
+(the reference of the studies):
+
+1. **closed form** (microseconds). Rejected outside Eq. 21's range (beta > 6, lambda > 7) and
+   where the web lands on the roller (the closed form clamps h to 0, the FE models carry the
+   load on the asperities at h ~ h_c, and their mu differ by up to the boundary/mixed jump).
+   All estimates are doubled (:data:`SAFETY`).
+   Otherwise its error is estimated by re-evaluating the closed form with its fitted gap
+   R eps^(2/3) (0.589 - 1.614/lambda + 1.764/lambda^2) replaced by the wide-web limit
+   0.643 R eps^(2/3) (1 - 1.48/lambda) that the 2-D studies measured (Eshel-Elrod's 0.643 and
+   edge leakage of 1.48/lambda in the central gap), keeping its permeation term.
+2. **fe1d** (about 0.1 s). Its error is the edge leakage it leaves out: the gap scaled by
+   (1 - 1.48/lambda) (1.87/lambda for the minimum gap), mu re-evaluated on the scaled gap.
+3. **fe2d** (about 1-2 s), the reference: its estimated error is the mesh error measured in the
+   convergence study (below 1e-4 on the default mesh).
+
+The estimate is for ``quantity`` ("mu", "h_center" or "h_min"), relative, and must be within
+``tol`` (default: mu within 1 %). The result is the chosen model's, with ``model = "auto"``,
+``model_used``, ``estimated_error`` and ``why`` added.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..case import Case, CaseError
+from ..physics import closed_form as cf
+from ..physics.friction import local_friction
+from ..result import Result
+from . import closed, fe1d, fe2d
+
+__all__ = ["solve", "NAME"]
+
+NAME = "auto"
+#: Relative edge-leakage loss of the central and minimum gaps, times lambda (tests/test_fe2d.py).
+LEAK_CENTER, LEAK_MIN = 1.48, 1.87
+#: Eshel-Elrod's central gap of the infinitely wide foil bearing.
+H0_WIDE = 0.643
+#: Mesh error of fe2d's default mesh (convergence study: about 2e-5 in the central gap).
+FE2D_ERROR = 1e-4
+#: The estimates above come from flying-film studies; doubled, they bound the errors measured
+#: against the finest 2-D solutions (tests/test_auto.py), where unscaled they fell up to 2x
+#: short in mixed lubrication.
+SAFETY = 2.0
+QUANTITIES = ("mu", "h_center", "h_min")
+
+
+def _friction(case: Case, h, w):
+    loc = local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
+                         eta=case.air.viscosity, E_b=case.web.modulus_thickness,
+                         sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
+                         C=case.friction.speed_constant, variant=case.friction.variant,
+                         distribution=case.friction.distribution)
+    return float(np.sum(loc["mu"] * w))
+
+
+def _closed_estimate(case: Case, r: Result, quantity: str):
+    if not r["eq21_valid"]:
+        return None, (f"closed form rejected: outside Eq. 21's range (beta = {r['beta']:.3g}, "
+                      f"lambda = {r['lambda']:.3g})")
+    if r["h_outlet"] <= r["h_c"]:
+        return None, ("closed form rejected: its gap falls below h_c in the wrap, where it "
+                      "lands the web (h -> 0) and the FE models rest it on the asperities")
+    lam = case.lam
+    fit = cf.width_factor(lam)
+    wide = H0_WIDE * (1.0 - LEAK_CENTER / lam)
+    shift = case.h_scale * (wide - fit)              # corrected minus fitted gap [m]
+    if quantity == "mu":
+        x, h = r.fields["x"], r.fields["h"]
+        g, gw = np.polynomial.legendre.leggauss(200)
+        s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
+        hq = np.interp(s, x, h)
+        est = abs(_friction(case, np.maximum(hq + shift, 0.0), 0.5 * gw) / r["mu"] - 1.0)
+    elif quantity == "h_min":   # Eq. 21 has no exit constriction: compare with its 0.716
+        est = abs((r["h_min"] + shift) * 0.716 / r["h_min"] - 1.0)
+    else:
+        est = abs(shift / r["h_center"])
+    est *= SAFETY
+    return est, f"closed form: estimated {quantity} error {est:.2g} (fit against the wide-web " \
+                f"gap with 1.48/lambda edge leakage)"
+
+
+def _fe1d_estimate(case: Case, r: Result, quantity: str):
+    lam = case.lam
+    if quantity == "mu":
+        h, w = r.diagnostics["wrap_h"], r.diagnostics["wrap_w"]
+        est = abs(_friction(case, h * (1.0 - LEAK_CENTER / lam), w) / r["mu"] - 1.0)
+    else:
+        est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam
+    est *= SAFETY
+    return est, f"fe1d: estimated {quantity} error {est:.2g} (edge leakage ~1.5/lambda left out)"
+
+
+def solve(case: Case, *, quantity: str = "mu", tol: float = 0.01, initial=None,
+          raise_on_failure: bool = True, **options) -> Result:
+    """Solve with the cheapest model whose estimated relative error in ``quantity`` is within
+    ``tol``. ``options`` go to the FE model that is used; ``initial`` is accepted for sweeps
+    and not used (each point picks its model afresh)."""
+    if quantity not in QUANTITIES:
+        raise CaseError(f"quantity = {quantity!r} is not valid: must be one of "
+                        + ", ".join(repr(q) for q in QUANTITIES))
+    if not 0.0 < tol < 1.0:
+        raise CaseError(f"tol = {tol!r} is out of range: must be in (0, 1)")
+    why = []
+    r = closed.solve(case)
+    est, text = _closed_estimate(case, r, quantity)
+    why.append(text)
+    if est is None or est > tol:
+        r1 = fe1d.solve(case, raise_on_failure=raise_on_failure,
+                        **{k: v for k, v in options.items() if k in fe1d.DEFAULTS})
+        est, text = _fe1d_estimate(case, r1, quantity)
+        why.append(text)
+        r = r1
+        if est > tol:
+            r = fe2d.solve(case, raise_on_failure=raise_on_failure, **options)
+            est = FE2D_ERROR
+            why.append(f"fe2d: the reference; mesh error about {FE2D_ERROR:g}")
+    used = r["model"]
+    r.summary.update(model=NAME, model_used=used, estimated_error=est, quantity=quantity,
+                     tolerance=tol, why="; ".join(why) + f" -> {used}")
+    return r
