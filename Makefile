@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 OUT ?= out
 
-.PHONY: run test test-slow bench clean meshes figures
+.PHONY: run test test-slow bench clean meshes figures studies
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -51,3 +51,7 @@ figures: $(STAMP)
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
 	  --chart docs/figures --points 4 --quiet
 	$(PY) -m webfem.studies.variants --out docs/figures --model $(FIG_MODEL)
+
+# the three studies and docs/studies.md from their numbers (about 20 minutes on 2 cores)
+studies: $(STAMP)
+	$(PY) -m webfem.studies.report --out docs --case cases/base.toml

@@ -221,6 +221,23 @@ def _cmd_calibrate(args) -> int:
     return 0 if fit["converged"] else 3
 
 
+def _cmd_study(args) -> int:
+    import warnings
+
+    from .errors import ValidityWarning
+    from .studies import convergence, pareto, stability
+
+    warnings.simplefilter("ignore", ValidityWarning)   # studies cross validity ranges
+    case = load_case(args.case, _overrides(args.set))
+    module = {"convergence": convergence, "pareto": pareto, "stability": stability}[args.kind]
+    out = module.run(case, args.out, quick=args.quick,
+                     progress=None if args.quiet else
+                     (lambda msg: print(f"  {msg}", file=sys.stderr, flush=True)))
+    print(out["report"])
+    print(f"wrote {args.kind} CSV, PNG and markdown into {args.out}", file=sys.stderr)
+    return 0
+
+
 def _cmd_keys(args) -> int:
     import dataclasses
     from .case import _SECTIONS
@@ -319,6 +336,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="estimates, errors and residuals as JSON")
     p.add_argument("--out", metavar="DIR", help="write the measured-against-predicted chart")
     p.set_defaults(func=_cmd_calibrate)
+
+    p = sub.add_parser("study", help="convergence, speed-against-accuracy (pareto) or "
+                                     "stability study of a case: CSV, PNG and markdown")
+    p.add_argument("kind", choices=("convergence", "pareto", "stability"))
+    p.add_argument("case", help="case TOML file")
+    p.add_argument("--set", action="append", metavar="SECTION.KEY=VALUE")
+    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--quick", action="store_true", help="the reduced study the tests run")
+    p.add_argument("--quiet", action="store_true", help="no progress lines")
+    p.set_defaults(func=_cmd_study)
 
     p = sub.add_parser("keys", help="list the case TOML keys with units and defaults")
     p.set_defaults(func=_cmd_keys)

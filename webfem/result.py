@@ -100,6 +100,10 @@ class Result:
     def __getitem__(self, key: str) -> Any:
         return self.summary[key]
 
+    def get(self, key: str, default: Any = None) -> Any:
+        """A summary value, or ``default`` when the model does not report that key."""
+        return self.summary.get(key, default)
+
     def to_json(self) -> dict[str, Any]:
         """The summary as a JSON-safe dict (non-finite numbers become null)."""
         keys = list(SUMMARY_KEYS) + [k for k in self.summary if k not in SUMMARY_KEYS]
