@@ -98,3 +98,18 @@ def test_changed_sweep_starts_over(case_file, tmp_path):
     calls = []
     rows = run(load_sweep(case_file), "fe1d", out, progress=lambda d, t: calls.append(d))
     assert len(calls) == 16 and any(float(r["value"]) == 39.0 for r in rows)
+
+
+def test_failed_points_are_retried(case_file, tmp_path):
+    """A point recorded as not converged is solved again on the next run, not kept."""
+    out = tmp_path / "r" / "s.csv"
+    rows = run(load_sweep(case_file), "fe1d", out)
+    text = out.read_text().splitlines()
+    header, first = text[0], text[1].split(",")
+    conv = header.split(",").index("converged")
+    first[conv] = "False"
+    out.write_text("\n".join([header, ",".join(first)] + text[2:]) + "\n")
+    calls = []
+    again = run(load_sweep(case_file), "fe1d", out, progress=lambda d, t: calls.append(d))
+    assert len(calls) == 1 and len(again) == len(rows)
+    assert all(r["converged"] for r in again)

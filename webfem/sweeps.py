@@ -2,8 +2,9 @@
 
 Every finished point is appended to the sweep's CSV at once (flushed to disk), its VTU files
 written under a temporary name and renamed; a sidecar ``.sweep.json`` records what the sweep
-is (parameter, values, series, model, options). Re-running the same sweep finds the sidecar,
-keeps the points already in the CSV and solves only the rest; a changed sweep starts over.
+is (parameter, values, series, model, options, webfem version). Re-running the same sweep
+finds the sidecar, keeps the converged points already in the CSV and solves the rest (points
+that failed are tried again); a changed sweep starts over.
 At the end the CSV is rewritten in sweep order (atomically).
 
 Execution:
@@ -36,7 +37,9 @@ __all__ = ["run", "solve_point"]
 
 
 def _signature(spec: Sweep, model: str, options: dict) -> dict:
+    from . import __version__
     return {"parameter": spec.parameter, "values": list(spec.values), "model": model,
+            "webfem": __version__,
             "options": {k: options[k] for k in sorted(options)},
             "series": [[label, case.to_dict()] for label, case in spec.series]}
 
@@ -75,7 +78,9 @@ def _load_done(csv_path: Path, sidecar: Path, signature: dict) -> dict:
             rows = list(csv.DictReader(fh))
     except (OSError, ValueError):
         return {}
-    return {_key(r["series"], r["value"]): r for r in rows if r.get("model")}
+    # points that did not converge are tried again
+    return {_key(r["series"], r["value"]): r for r in rows
+            if r.get("model") and r.get("converged") == "True"}
 
 
 class _Appender:
@@ -204,8 +209,9 @@ def run(spec: Sweep, model: str, out_csv, *, options: dict | None = None, worker
                 if sel:
                     write_pvd(sel, Path(vtu_dir) / f"{vtu_stem}_{tag}_{part}.pvd")
     with out_csv.open(newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    rows.sort(key=lambda r: order.get(_key(r["series"], r["value"]), len(order)))
+        latest = {_key(r["series"], r["value"]): r for r in csv.DictReader(fh)}  # last wins
+    rows = sorted(latest.values(),
+                  key=lambda r: order.get(_key(r["series"], r["value"]), len(order)))
     write_csv(rows, out_csv)
     return _typed(rows)
 
