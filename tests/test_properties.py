@@ -5,7 +5,6 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import webfem
 from webfem import Case
 from webfem.models import closed, fe1d, fe2d
 from webfem.physics.contact import load_ratio

@@ -5,7 +5,6 @@ import warnings
 
 import pytest
 
-import webfem
 from webfem import Case
 from webfem.errors import ValidityWarning
 from webfem.studies import convergence, pareto, stability

@@ -18,7 +18,6 @@ of :mod:`webfem.fem.transfer`.
 
 from __future__ import annotations
 
-import numpy as np
 from skfem import BilinearForm, LinearForm
 
 from .forms import film_gap

@@ -19,7 +19,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["PicardResult", "picard"]
+__all__ = ["PicardResult", "picard", "frozen_coefficient_picard"]
 
 
 @dataclass
@@ -116,3 +116,48 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
         x = x_next
         r_prev = r
     return PicardResult(x, False, max_iter, history[-1], history, omegas, "stalled")
+
+
+def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True,
+                              max_iter=500, backtrack=1.5, anderson=10):
+    """Picard iteration on a coupled film-web problem: each sweep solves the linear system of
+    the equations with the film's nonlinear coefficients frozen at the last iterate
+    (``problem.jacobian(u, prm, newton=False)``), under-relaxed by Anderson acceleration of
+    depth ``anderson`` and, if that fails, Aitken's factor (``aitken``) or fixed ``omega``.
+
+    ``problem`` provides ``residual(u, prm)``, ``jacobian(u, prm, newton)``, ``free`` and
+    ``consistent_pressure(u, prm)``. Stops when the coupled residual ||F||_2 <= ``tol``, the
+    test Newton uses, so the two compare at equal tolerance. Returns ``(u, info)``.
+    """
+    from .newton import solve_linear
+
+    u = problem.consistent_pressure(u0, prm)
+    free = problem.free
+    last = {"norm": np.inf}
+
+    def G(x):
+        v = u.copy()
+        v[free] = x
+        F = problem.residual(v, prm)[free]
+        last["norm"] = float(np.linalg.norm(F))
+        if not np.isfinite(last["norm"]):
+            raise FloatingPointError("residual not finite")
+        A = problem.jacobian(v, prm, newton=False).tocsr()[free][:, free].tocsc()
+        return x - solve_linear(A, F)
+
+    def once(depth):
+        return picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
+                      norm=lambda r: last["norm"], backtrack=backtrack, anderson=depth)
+
+    out = once(anderson)
+    if not out.converged and anderson:
+        # Anderson's least squares can lock onto a bad combination: plain relaxation
+        first = out
+        out = once(0)
+        out.iterations += first.iterations
+        out.history = first.history + out.history
+        out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
+    u[free] = out.x
+    res = float(np.linalg.norm(problem.residual(u, prm)[free]))
+    return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
+                   history=out.history, reason=out.reason, omegas=out.omegas)

@@ -71,19 +71,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper right", ncol=2 if reference else 1)
     if title:
         ax.set_title(title, fontsize=10)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.stem, suffix=".png", dir=path.parent)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=120)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
-    finally:
-        plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path) -> Path:

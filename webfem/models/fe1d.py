@@ -38,8 +38,8 @@ from ..case import Case, CaseError
 from ..errors import ConvergenceError
 from ..fem import forms
 from ..fem.mesh import graded_nodes, line_mesh, refine_nodes
-from ..fem.newton import newton, solve_linear
-from ..fem.picard import picard
+from ..fem.newton import newton
+from ..fem.picard import frozen_coefficient_picard, picard
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES, contact_gap
 from ..physics.friction import delta_T_from_mu, local_friction
@@ -300,34 +300,8 @@ class FoilBearing1D:
         Stops when the coupled residual ||F||_2 <= ``tol``, the same test as Newton, so the
         two compare at equal tolerance.
         """
-        u = self.consistent_pressure(u0, prm)
-        free = self.free
-        last = {"norm": np.inf}
-
-        def G(x):
-            v = u.copy()
-            v[free] = x
-            F = self.residual(v, prm)[free]
-            last["norm"] = float(np.linalg.norm(F))
-            if not np.isfinite(last["norm"]):
-                raise FloatingPointError("residual not finite")
-            A = self.jacobian(v, prm, newton=False).tocsr()[free][:, free].tocsc()
-            return x - solve_linear(A, F)
-
-        out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                     norm=lambda r: last["norm"], backtrack=backtrack, anderson=anderson)
-        if not out.converged and anderson:
-            # Anderson's least squares can lock onto a bad combination: plain relaxation
-            first = out
-            out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                         norm=lambda r: last["norm"], backtrack=backtrack)
-            out.iterations += first.iterations
-            out.history = first.history + out.history
-            out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
-        u[free] = out.x
-        res = float(np.linalg.norm(self.residual(u, prm)[free]))
-        return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
-                       history=out.history, reason=out.reason, omegas=out.omegas)
+        return frozen_coefficient_picard(self, u0, prm, tol, omega, aitken, max_iter,
+                                         backtrack, anderson)
 
     def solve_picard_staggered(self, u0, prm, tol=1e-9, omega=0.5, aitken=True,
                                max_iter=3000):

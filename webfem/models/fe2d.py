@@ -35,8 +35,8 @@ from ..errors import ConvergenceError
 from ..fem import forms
 from ..fem.film2d import film_coefficients, film_jacobian, film_residual
 from ..fem.mesh import line_mesh
-from ..fem.newton import newton, solve_linear
-from ..fem.picard import picard
+from ..fem.newton import newton
+from ..fem.picard import frozen_coefficient_picard
 from ..fem.transfer import film_mesh, quadrature_matrices, width_nodes
 from ..fem.web import web_coefficients, web_jacobian, web_residual
 from ..result import Result
@@ -204,34 +204,8 @@ class FoilBearing2D:
                      backtrack=1.5, anderson=10):
         """Picard with the film's coefficients frozen (see :meth:`fe1d.FoilBearing1D.
         solve_picard`); stops on the coupled residual norm, like Newton."""
-        u = self.consistent_pressure(u0, prm)
-        free = self.free
-        last = {"norm": np.inf}
-
-        def G(x):
-            v = u.copy()
-            v[free] = x
-            F = self.residual(v, prm)[free]
-            last["norm"] = float(np.linalg.norm(F))
-            if not np.isfinite(last["norm"]):
-                raise FloatingPointError("residual not finite")
-            A = self.jacobian(v, prm, newton=False)[free][:, free].tocsc()
-            return x - solve_linear(A, F)
-
-        out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                     norm=lambda r: last["norm"], backtrack=backtrack, anderson=anderson)
-        if not out.converged and anderson:
-            # Anderson's least squares can lock onto a bad combination: plain relaxation
-            first = out
-            out = picard(G, u[free], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter,
-                         norm=lambda r: last["norm"], backtrack=backtrack)
-            out.iterations += first.iterations
-            out.history = first.history + out.history
-            out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
-        u[free] = out.x
-        res = float(np.linalg.norm(self.residual(u, prm)[free]))
-        return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
-                       history=out.history, reason=out.reason, omegas=out.omegas)
+        return frozen_coefficient_picard(self, u0, prm, tol, omega, aitken, max_iter,
+                                         backtrack, anderson)
 
 
 def _run(problem, u0, prm, opts):
