@@ -129,6 +129,13 @@ class Result:
             f"  converged = {s['converged']}, iterations = {s['iterations']}, "
             f"n_dofs = {s['n_dofs']}, time = {s['solve_time_s'] * 1e3:.3f} ms",
         ]
+        if "mesh" in s:
+            lines.append(f"  {s.get('method', '')} on {s['mesh']}; residual "
+                         f"{s.get('residual', float('nan')):.2e}; contact carries "
+                         f"{100 * s.get('contact_share', 0.0):.1f} % of the wrap load")
+        if "why" in s:
+            lines.append(f"  model used: {s['model_used']} (estimated {s['quantity']} error "
+                         f"{s['estimated_error']:.2g} <= {s['tolerance']:g}): {s['why']}")
         for w in s.get("warnings", []):
             lines.append(f"  warning: {w}")
         return "\n".join(lines)

@@ -48,8 +48,9 @@ def classify(result) -> str:
 
 def attempt(case: Case, model: str, opts: dict) -> dict:
     t0 = time.perf_counter()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ValidityWarning)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", ValidityWarning)   # the map crosses ranges on purpose
+        warnings.simplefilter("ignore", RuntimeWarning)    # diverging iterates overflow
         try:
             r = solve(case, model=model, **opts)
         except ConvergenceError as err:
