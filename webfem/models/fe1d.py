@@ -481,6 +481,19 @@ def _problem(beta, entry, level, order, nodes=None) -> FoilBearing1D:
     return _CACHE[key]
 
 
+def checked_options(model: str, options: dict, defaults: dict, methods) -> dict:
+    """The model's defaults updated by ``options``, rejecting unknown names and methods."""
+    unknown = set(options) - set(defaults)
+    if unknown:
+        raise CaseError(f"unknown {model} option(s) {sorted(unknown)}; valid: "
+                        f"{sorted(defaults)}")
+    opts = {**defaults, **options}
+    if opts["method"] not in methods:
+        raise CaseError(f"method = {opts['method']!r} is not valid: must be one of "
+                        + ", ".join(repr(m) for m in methods))
+    return opts
+
+
 def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool = True,
           **options) -> Result:
     """Solve one case with the 1-D FE model.
@@ -501,13 +514,7 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     Raises :class:`webfem.errors.ConvergenceError` (carrying the unconverged result and the
     residual history) when the solve fails, unless ``raise_on_failure=False``.
     """
-    unknown = set(options) - set(DEFAULTS)
-    if unknown:
-        raise CaseError(f"unknown fe1d option(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-    opts = {**DEFAULTS, **options}
-    if opts["method"] not in METHODS:
-        raise CaseError(f"method = {opts['method']!r} is not valid: must be one of "
-                        + ", ".join(repr(m) for m in METHODS))
+    opts = checked_options(NAME, options, DEFAULTS, METHODS)
     if not opts["entry"] > 0:
         raise CaseError(f"entry = {opts['entry']!r} is out of range: must be > 0")
     if int(opts["level"]) != opts["level"] or not 0 <= opts["level"] <= 8:

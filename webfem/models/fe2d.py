@@ -274,13 +274,7 @@ def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool =
     ``initial``: a previous fe2d result; its 1-D part starts this point's 1-D solve
     (continuation in a sweep). The 2-D solve always starts from the 1-D solution.
     """
-    unknown = set(options) - set(DEFAULTS)
-    if unknown:
-        raise CaseError(f"unknown fe2d option(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-    opts = {**DEFAULTS, **options}
-    if opts["method"] not in METHODS:
-        raise CaseError(f"method = {opts['method']!r} is not valid: must be one of "
-                        + ", ".join(repr(m) for m in METHODS))
+    opts = fe1d.checked_options(NAME, options, DEFAULTS, METHODS)
     if not opts["width_fine"] > 0:
         raise CaseError(f"width_fine = {opts['width_fine']!r} is out of range: must be > 0")
     t0 = time.perf_counter()
