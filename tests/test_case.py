@@ -92,3 +92,59 @@ def test_cli_assignment():
     with pytest.raises(CaseError, match="web.tension"):
         parse_assignment("web.tensoin=1")
     assert "web.bending_stiffness" in valid_keys()
+
+
+@pytest.mark.parametrize("content,words", [
+    (b"[web]\n# caf\xe9\nwidth = 0.03\n", ["c.toml", "not UTF-8", "0xe9", "line 2"]),
+    (b"[roller]\nspeed = 1" + b"0" * 400 + b"\n", ["roller.speed = 1.00e+400", "out of range",
+                                                   ">= 0"]),
+    (b"[roller]\nspeed = 1" + b"0" * 5000 + b"\n", ["c.toml", "out of range", "4300 digits"]),
+    (b"[roller]\nspeed = true\n", ["roller.speed = True", "not a number"]),
+    (b'[roller]\nspeed = "10"\n', ["roller.speed = '10'", "not a number"]),
+    (b"[friction]\nvariant = 5\n", ["friction.variant = 5", "'paper'"]),
+    (b"roller = 5\n", ["'roller' in", "must be a table"]),
+])
+def test_bad_case_file_names_file_or_key(tmp_path, content, words):
+    p = tmp_path / "c.toml"
+    p.write_bytes(content)
+    with pytest.raises(CaseError) as err:
+        load_case(p)
+    msg = str(err.value)
+    assert "\n" not in msg and len(msg) < 400
+    for w in words:
+        assert w in msg
+
+
+def test_case_file_path_checks(tmp_path):
+    with pytest.raises(CaseError, match="case file '.*' is a directory"):
+        load_case(tmp_path)
+    bom = tmp_path / "bom.toml"             # some Windows editors start files with a BOM
+    bom.write_bytes("\ufeff[web]\nwidth = 0.03\n".encode())
+    assert load_case(bom).web.width == 0.03
+
+
+@pytest.mark.parametrize("text,words", [
+    ("roller.speed=1" + "0" * 400, ["roller.speed = 1.00e+400", "out of range"]),
+    ("roller.speed=10**400", ["roller.speed = '10**400'", "not a number"]),
+    ("roller.speed=1e400", ["roller.speed = inf", "out of range"]),
+    ("roller.speed=" + "1" * 5000, ["roller.speed = '1111", "not a number"]),
+    ("roller.speed=true", ["roller.speed = True", "not a number"]),
+])
+def test_cli_assignment_bad_numbers(text, words):
+    with pytest.raises(CaseError) as err:
+        Case().updated(dict([parse_assignment(text)]))
+    msg = str(err.value)
+    assert len(msg) < 300
+    for w in words:
+        assert w in msg
+
+
+def test_cli_assignment_one_line_only():
+    with pytest.raises(CaseError, match="on one line"):
+        parse_assignment("roller.speed=1\nweb.width=3")
+
+
+def test_numpy_numbers_accepted():
+    import numpy as np
+    c = Case().updated({"roller.speed": np.int64(3), "web.width": np.float32(0.5)})
+    assert c.roller.speed == 3.0 and type(c.roller.speed) is float and c.web.width == 0.5

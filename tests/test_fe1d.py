@@ -193,4 +193,4 @@ def test_cli_model_options(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["method"] == "picard" and data["converged"]
     assert main(["solve", "cases/base.toml", "--opt", "level=1"]) == 2
-    assert "takes no options" in capsys.readouterr().err
+    assert "unknown closed-form option 'level'" in capsys.readouterr().err

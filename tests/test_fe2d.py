@@ -120,7 +120,8 @@ def test_outside_eq21_range(changes):
 
 
 def test_vtu_round_trip(fast_result, tmp_path):
-    paths = fast_result.save_vtu(tmp_path, "base")
+    from webfem.io.vtu import write_result
+    paths = write_result(fast_result, tmp_path, "base")
     assert [p.name for p in paths] == ["base_web.vtu", "base_film.vtu"]
     web = meshio.read(paths[0])
     film = meshio.read(paths[1])

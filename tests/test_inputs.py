@@ -1,4 +1,5 @@
-"""Bad inputs beyond the case keys: mesh files, model options; validity warnings."""
+"""Bad inputs beyond the case keys: sweep tables and respacing, case files on the command
+line, mesh files, model options; validity warnings."""
 
 import warnings
 
@@ -6,8 +7,9 @@ import pytest
 
 import webfem
 from webfem import Case, CaseError
+from webfem.case import Sweep, load_sweep
 from webfem.cli import main
-from webfem.errors import ValidityWarning
+from webfem.errors import InputError, ValidityWarning
 
 
 def test_mesh_file_missing_or_not_a_mesh(tmp_path):
@@ -47,7 +49,7 @@ def test_validity_warnings():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         r = webfem.solve(Case().updated({"roller.speed": 40.0}))   # inside every range
-    assert r["warnings"] == []
+    assert list(r["warnings"]) == []
 
 
 def test_cli_bad_option_exit_code(capsys):
@@ -64,3 +66,168 @@ def test_unconverged_solve_exits_3_and_writes_marked_vtu(tmp_path, capsys):
     out = capsys.readouterr()
     assert '"converged": false' in out.out
     assert list(tmp_path.glob("*NOT_CONVERGED*_web.vtu"))
+
+
+# -- [sweep] and [[series]] tables: strict types, counts and spacing -------------------
+
+BIG = "1" + "0" * 400   # a TOML integer beyond float range
+
+
+def _series(n, label="s{}"):
+    return "".join(f'[[series]]\nlabel = "{label.format(i)}"\n' for i in range(n))
+
+
+BAD_SWEEPS = [
+    ('values = "12"', ["sweep.values = '12'", "list of numbers"]),
+    ("values = [true, 2]", ["sweep.values item 1 = True", "not a number"]),
+    ('values = ["a"]', ["sweep.values item 1 = 'a'", "not a number"]),
+    ("values = 5", ["sweep.values = 5", "list of numbers"]),
+    ("values = []", ["sweep.values holds 0", "1 to 10000"]),
+    ("values = [1, 2, 1.0]", ["sweep.values holds 1 twice"]),
+    ("values = [1, nan]", ["sweep.values item 2 = nan", "finite"]),
+    (f"values = [{BIG}]", ["sweep.values item 1 = 1.00e+400", "out of range"]),
+    ("values = [" + ", ".join(map(str, range(1, 10_002))) + "]",
+     ["sweep.values holds 10001", "1 to 10000"]),
+    ("values = [-1, 2]", ["roller.speed = -1", ">= 0", "series 'base'"]),
+    ("values = [1, 2]\nnum = 3", ["sweep.values and sweep.num", "cannot be combined"]),
+    ("start = 1\nstop = 2\nnum = 2.7", ["sweep.num = 2.7", "whole number", "1 to 10000"]),
+    ('start = 1\nstop = 2\nnum = "x"', ["sweep.num = 'x'", "whole number"]),
+    ("start = 1\nstop = 2\nnum = 1e11", ["sweep.num = 100000000000.0", "whole number"]),
+    ("start = 1\nstop = 2\nnum = 100000000000", ["sweep.num = 100000000000", "out of range",
+                                                  "1 to 10000"]),
+    ("start = 1\nstop = 2\nnum = 0", ["sweep.num = 0", "out of range"]),
+    ("start = 1\nstop = 2\nnum = true", ["sweep.num = True", "whole number"]),
+    ('start = 0\nstop = 2\nspacing = "log"', ["sweep.spacing = 'log'", "sweep.start = 0",
+                                              "> 0"]),
+    ('start = 1\nstop = 2\nspacing = "cubic"', ["sweep.spacing = 'cubic'", "'linear' or 'log'"]),
+    ('start = "a"\nstop = 2', ["sweep.start = 'a'", "not a number"]),
+    ("start = 1\nstop = nan", ["sweep.stop = nan", "finite"]),
+    (f"start = 1\nstop = {BIG}", ["sweep.stop = 1.00e+400", "out of range"]),
+    ("start = 1\nnum = 3", ["needs 'values' or 'start' and 'stop'"]),
+    ("start = 5\nstop = 5\nnum = 3", ["sweep.start = sweep.stop = 5", "num = 1"]),
+    ("parameter = 5\nvalues = [1]", ["sweep.parameter = 5", "case key"]),
+    ('parameter = "friction.variant"\nvalues = [1]', ["sweep.parameter = 'friction.variant'",
+                                                      "not a numeric key", "roller.speed"]),
+    ('parameter = "roller.sped"\nvalues = [1]', ["roller.sped", "did you mean 'roller.speed'"]),
+    ("nmu = 4\nvalues = [1]", ["sweep.nmu", "did you mean 'num'"]),
+    ("values = [1]\n" + _series(2, "a"), ["series label 'a' is used twice", "series 1 and 2"]),
+    ('values = [1]\n[[series]]\nlabel = ""', ["series label = ''", "non-empty"]),
+    ("values = [1]\n[[series]]\nlabel = 5", ["series label = 5", "non-empty"]),
+    ("values = [1]\n" + _series(101), ["[[series]]", "101 tables", "at most 100"]),
+    ('values = [1]\n[[series]]\nlabel = "a"\nroller = { speed = 3 }',
+     ["roller.speed = 3", "series 'a'", "swept parameter"]),
+    ('values = [1]\n[[series]]\nlabel = "a"\nweb = { tension = -1 }',
+     ["web.tension = -1.0", "> 0", "series 'a'"]),
+    ("values = [" + ", ".join(map(str, range(1, 2001))) + "]\n" + _series(51),
+     ["2000 values x 51 series = 102000 points", "at most 100000"]),
+]
+
+
+@pytest.mark.parametrize("body,words", BAD_SWEEPS, ids=[w[0] for _, w in BAD_SWEEPS])
+def test_bad_sweep_table_names_key_value_and_rule(tmp_path, body, words):
+    p = tmp_path / "s.toml"
+    head, _, tail = body.partition("[[series]]")
+    p.write_text("[sweep]\n" + head + ("\n[[series]]" + tail if tail else ""))
+    with pytest.raises(InputError) as err:
+        load_sweep(p)
+    msg = str(err.value)
+    assert "\n" not in msg and "s.toml" in msg
+    for w in words:
+        assert w in msg
+
+
+@pytest.mark.parametrize("text,words", [
+    ("sweep = 5\n", ["sweep = 5 in", "[sweep] table"]),
+    ("series = 5\n", ["series = 5 in", "[[series]]"]),
+    ("series = [1]\n", ["series = [1] in", "[[series]]"]),
+])
+def test_sweep_and_series_must_be_tables(tmp_path, text, words):
+    p = tmp_path / "s.toml"
+    p.write_text(text)
+    with pytest.raises(InputError) as err:
+        load_sweep(p)
+    for w in words:
+        assert w in str(err.value)
+
+
+def test_good_sweeps_read_as_before(tmp_path):
+    p = tmp_path / "s.toml"
+    p.write_text('[sweep]\nstart = 1\nstop = 100\nnum = 3\nspacing = "log"\n')
+    assert load_sweep(p).values == (1.0, 10.0, 100.0)
+    p.write_text("[sweep]\nstart = 40\nstop = 0.5\n")          # downward, num defaults to 40
+    values = load_sweep(p).values
+    assert len(values) == 40 and values[0] == 40.0 and values[-1] == 0.5
+    p.write_text('[[series]]\nweb = { tension = 40 }\n[[series]]\nlabel = "b"\n')
+    s = load_sweep(p)                                           # no [sweep]: the paper's range
+    assert s.parameter == "roller.speed" and len(s.values) == 60
+    assert [label for label, _ in s.series] == ["series 1", "b"]
+    assert load_sweep(p, {"web.width": 0.05}).series[0][1].web.width == 0.05
+    with pytest.raises(InputError, match="roller.speed = 5.*swept parameter"):
+        load_sweep(p, {"roller.speed": 5})
+
+
+# -- Sweep.respaced: the command line's --num and --log ---------------------------------
+def _sweep(values, **case):
+    return Sweep("roller.speed", values, (("a", Case().updated(case)),))
+
+
+def test_respaced_same_range():
+    s = _sweep([5.0, 1.0, 3.0])
+    assert s.respaced(3).values == (1.0, 3.0, 5.0)
+    assert s.respaced(3, log=True).values == pytest.approx((1.0, 5 ** 0.5, 5.0), rel=1e-15)
+    assert s.respaced(1).values == (1.0,)
+    assert s.respaced(None) is s
+    assert s.respaced(4).series == s.series
+
+
+@pytest.mark.parametrize("num,log,words", [
+    (None, True, ["--log needs --num"]),
+    (2.7, False, ["--num = 2.7", "whole number", "1 to 10000"]),
+    ("x", False, ["--num = 'x'", "whole number"]),
+    (True, False, ["--num = True", "whole number"]),
+    (0, False, ["--num = 0", "out of range", "1 to 10000"]),
+    (10_001, False, ["--num = 10001", "out of range"]),
+])
+def test_respaced_rejects_bad_num(num, log, words):
+    with pytest.raises(InputError) as err:
+        _sweep([1.0, 2.0]).respaced(num, log=log)
+    for w in words:
+        assert w in str(err.value)
+
+
+def test_respaced_log_needs_positive_range_and_a_range():
+    with pytest.raises(InputError, match=r"--log needs values > 0.*roller.speed = 0 \.\. 4"):
+        _sweep([0.0, 4.0], **{"web.speed": 1.0}).respaced(5, log=True)
+    with pytest.raises(InputError, match="one value roller.speed = 2"):
+        _sweep([2.0]).respaced(5)
+
+
+def test_sweep_checked_on_creation():
+    s = Sweep("roller.speed", [1, 2], [("a", Case())])
+    assert s.values == (1.0, 2.0) and isinstance(s.series, tuple)
+    with pytest.raises(InputError, match="must hold a webfem.case.Case"):
+        Sweep("roller.speed", [1.0], [("a", {"web": {}})])
+    with pytest.raises(InputError, match="a sweep has 0 series"):
+        Sweep("roller.speed", [1.0], [])
+
+
+@pytest.mark.parametrize("command,content,words", [
+    ("sweep", b'[sweep]\nvalues = "12"\n', ["sweep.values = '12'"]),
+    ("sweep", b"[sweep]\nvalues = [1, 1]\n", ["sweep.values holds 1 twice"]),
+    ("sweep", b"[sweep]\nstart = 1\nstop = 2\nnum = 1e11\n", ["sweep.num"]),
+    ("solve", b"[web]\n# caf\xe9\n", ["not UTF-8"]),
+    ("solve", None, ["is a directory"]),
+    ("solve", b"[roller]\nspeed = 1" + b"0" * 400 + b"\n", ["roller.speed", "out of range"]),
+])
+def test_cli_bad_case_file_exits_2_without_traceback(tmp_path, capsys, command, content, words):
+    p = tmp_path / "s.toml"
+    if content is None:
+        p.mkdir()
+    else:
+        p.write_bytes(content)
+    assert main([command, str(p), "--out", str(tmp_path / "out"), "--quiet"]
+                if command == "sweep" else [command, str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+    for w in words:
+        assert w in err

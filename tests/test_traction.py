@@ -6,11 +6,13 @@ import numpy as np
 import pytest
 
 import webfem
+import webfem.errors
 from webfem import Case
 from webfem.calibrate import calibrate, read_measurements
 from webfem.cli import main
 from webfem.models.closed import case_arrays, evaluate
-from webfem.traction import traction_loss_speed
+from webfem.traction import (CHART_PARAMETERS, TractionLoss, mu_curve, traction_loss_speed,
+                             traction_loss_table)
 
 
 def test_traction_loss_speed_is_a_crossing():
@@ -120,3 +122,117 @@ def test_vectorised_friction_constants():
     arr.update(mu_cc=np.array([0.3, 0.4]), C=np.array([0.4, 0.4]))
     mu = evaluate(**arr)["mu"]
     assert mu[1] > mu[0]
+
+
+# -- typed answers, checked inputs, calibration that knows what it cannot know -------------
+
+def test_traction_loss_is_a_typed_answer():
+    out = traction_loss_speed(Case(), 0.1, n_scan=12)
+    assert isinstance(out, TractionLoss)
+    assert out["speed"] == out.speed and out["bracket"] == out.bracket
+    with pytest.raises(KeyError):
+        out["spead"]
+    data = json.loads(json.dumps(out.to_dict(), allow_nan=False))
+    assert data["bracket"] == list(out.bracket) and data["model"] == "closed-form"
+    assert data["evaluations"] > 12   # the scan, then Brent's steps
+
+
+@pytest.mark.parametrize("kwargs,words", [
+    ({"mu_min": 0.0}, ["mu_min = 0.0", "> 0"]),
+    ({"mu_min": float("nan")}, ["mu_min"]),
+    ({"mu_min": 0.1, "speed_range": (50.0, 10.0)}, ["low < high"]),
+    ({"mu_min": 0.1, "model": "fe1d", "levle": 2}, ["'levle'", "'level'"]),
+])
+def test_traction_loss_rejects_bad_input(kwargs, words):
+    with pytest.raises(webfem.errors.InputError) as err:
+        traction_loss_speed(Case(), **kwargs)
+    for word in words:
+        assert word in str(err.value)
+
+
+def test_mu_curve_is_the_solved_mu():
+    speeds, mu = mu_curve(Case(), "closed-form", [2.0, 20.0, 40.0])
+    for u, m in zip(speeds, mu):
+        assert m == webfem.solve(Case().updated({"roller.speed": u}))["mu"]
+
+
+def test_traction_loss_chart_from_the_cli(tmp_path, capsys):
+    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.1", "--chart",
+                 str(tmp_path), "--points", "2", "--quiet"]) == 0
+    assert (tmp_path / "base_traction_loss.png").stat().st_size > 10_000
+    assert "mu falls below 0.1" in capsys.readouterr().out
+    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.5", "--json"]) == 4
+    assert json.loads(capsys.readouterr().out)["speed"] is None
+
+
+def test_traction_loss_table_trend():
+    rows = traction_loss_table(Case(), 0.1, n=2, n_scan=12)
+    tension = [r for r in rows if r["parameter"] == "web.tension"]
+    assert len(rows) == 2 * len(CHART_PARAMETERS) and len(tension) == 2
+    assert tension[1]["speed"] > tension[0]["speed"]   # more tension, traction kept longer
+
+
+def _write(path, text, encoding="utf-8"):
+    path.write_bytes(text.encode(encoding))
+    return path
+
+
+@pytest.mark.parametrize("text,encoding,words", [
+    ("roller_speed,delta_T\n2,10\n5,-3\n", "utf-8", ["line 3", "delta_T = -3.0", "negative"]),
+    ("roller_speed,mu\n2,0.2\n5,nan\n", "utf-8", ["line 3", "mu = nan", "not finite"]),
+    ("roller_speed,delta_T,tensoin\n2,10,80\n", "utf-8", ["'tensoin'", "did you mean 'tension'"]),
+    ("roller_speed,delta_T,torque\n2,10,3\n", "utf-8", ["unknown column 'torque'"]),
+    ("# mesure à 20 °C\nroller_speed,delta_T\n2,10\n", "latin-1", ["not UTF-8", "UTF-8"]),
+    ("speed,roller_speed,delta_T\n2,2,10\n", "utf-8", ["'speed' and 'roller_speed'"]),
+    ("roller_speed,delta_T\n2,10,7\n", "utf-8", ["line 2", "3 values for 2 columns"]),
+])
+def test_measurement_files_are_read_strictly(tmp_path, capsys, text, encoding, words):
+    p = _write(tmp_path / "m.csv", text, encoding)
+    with pytest.raises(webfem.errors.InputError) as err:
+        read_measurements(p)
+    for word in words:
+        assert word in str(err.value)
+    assert main(["calibrate", str(p), "--case", "cases/base.toml"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("webfem: error: ")
+
+
+def test_calibration_rows_from_python_are_checked():
+    rows = [{"roller.speed": u, "mu": 0.2} for u in (1.0, 2.0, 3.0)]
+    rows[1]["mu"] = -0.1
+    with pytest.raises(webfem.errors.InputError, match="measurement row 2: mu = -0.1"):
+        calibrate(rows, Case())
+    rows[1]["mu"] = float("inf")
+    with pytest.raises(webfem.errors.InputError, match="row 2: mu = inf is not finite"):
+        calibrate(rows, Case())
+
+
+def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
+    """Rows without speed variation cannot identify C: no +- 0 nor +- inf, but a note."""
+    rows = synthetic(Case(), (20.0,), (40.0, 60.0, 80.0, 100.0, 120.0), 0.33, 0.5, 0.2)
+    p = _write(tmp_path / "one_speed.csv", "tension,delta_T\n" + "\n".join(
+        f"{r['web.tension']},{r['delta_T']}" for r in rows))
+    assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json"]) == 0
+
+    def refuse(name):
+        raise AssertionError(f"{name} in JSON output")
+    out = json.loads(capsys.readouterr().out, parse_constant=refuse)
+    assert out["identified"] == {"mu_cc": True, "speed_constant": False}
+    assert out["ci95"]["speed_constant"] is None and out["stderr"]["speed_constant"] is None
+    assert 0.0 < out["ci95"]["mu_cc"] < 0.05
+    assert any("speed_constant cannot be identified" in n and "roller speeds" in n
+               for n in out["notes"])
+    assert main(["calibrate", str(p), "--case", "cases/base.toml"]) == 0
+    text = capsys.readouterr().out
+    assert "not identified" in text and "+- 0 " not in text and "inf" not in text
+
+
+def test_calibration_says_when_constants_act_only_together():
+    """In boundary lubrication at one speed mu = (2/pi) mu_cc atan(U/C): one combination."""
+    base = Case().updated({"roller.speed": 0.5})
+    rows = synthetic(base, (0.5,), (40.0, 60.0, 80.0, 100.0, 120.0), 0.33, 0.5, 0.2)
+    fit = calibrate([{k: v for k, v in r.items() if k != "roller.speed"} for r in rows], base)
+    assert fit.identified == {"mu_cc": False, "speed_constant": False}
+    assert fit.ci95 == {"mu_cc": None, "speed_constant": None}
+    assert any("only together with speed_constant" in n for n in fit.notes)
+    assert fit["estimates"] == fit.estimates

@@ -1,105 +1,131 @@
-"""Model dispatch: ``solve(case, model=...)`` and ``sweep(sweep, model=...)``."""
+"""The public entry points: :func:`solve` one case, :func:`solve_along` a path of cases with
+continuation, :func:`sweep` a :class:`webfem.case.Sweep`.
+
+Models and their options come from :data:`webfem.models.registry.MODELS`. Nothing here
+reads or writes files.
+
+Examples
+--------
+>>> import webfem
+>>> case = webfem.Case()
+>>> [round(r["mu"], 4) for r in solve_along([case.updated({"roller.speed": u})
+...                                           for u in (30.0, 40.0)], "closed-form")]
+[0.0506, 0.0207]
+"""
 
 from __future__ import annotations
 
-from typing import Callable, Iterator
+import warnings
+from typing import Callable, Iterable, Iterator
 
-from .case import Case, CaseError, Sweep
-from .errors import ConvergenceError, ValidityWarning  # noqa: F401  (re-exported)
-from .models import closed
+from .case import Case, Sweep
+from .errors import ConvergenceError, ValidityWarning
+from .models.options import Options
+from .models.registry import MODELS, make_options, model_spec
 from .result import Result
 
-__all__ = ["MODELS", "solve", "sweep"]
+__all__ = ["MODELS", "solve", "solve_along", "sweep"]
 
 
-def _fe1d(case: Case, **options) -> Result:
-    from .models import fe1d
-    return fe1d.solve(case, **options)
+def solve(case: Case, model: str = "closed-form", *, initial: Result | None = None,
+          options: Options | dict | None = None, **values) -> Result:
+    """Solve one operating point with the named model.
 
+    Parameters
+    ----------
+    case : Case
+        The operating point (SI units).
+    model : str
+        ``"closed-form"`` (the paper's Eq. 21, microseconds), ``"fe1d"`` (infinitely wide
+        film + web, about 0.1 s), ``"fe2d"`` (2-D film with edge leakage + web, about 1 s)
+        or ``"auto"`` (the cheapest of these whose estimated error in ``quantity`` meets
+        ``tol``).
+    initial : Result, optional
+        A converged result of the same model at a nearby point to start from (continuation);
+        the answer does not depend on it, only the cost.
+    options : Options or dict, optional
+        The model's options (:class:`~webfem.models.options.FE1DOptions`, ...); keywords
+        (``level=2, method="picard"``) are the same. Unknown names are errors.
 
-def _fe2d(case: Case, **options) -> Result:
-    from .models import fe2d
-    return fe2d.solve(case, **options)
+    Returns
+    -------
+    Result
+        ``result["mu"]``, ``result.summary`` (every JSON key), ``result.fields``.
 
+    Raises
+    ------
+    webfem.errors.InputError
+        An unknown model or option, or an option out of its range.
+    webfem.errors.ConvergenceError
+        No converged, admissible solution; ``err.result`` holds the last iterate.
 
-def _auto(case: Case, **options) -> Result:
-    from .models import auto
-    return auto.solve(case, **options)
-
-
-#: Model names accepted by :func:`solve`, ``--model`` and sweeps.
-MODELS: dict[str, Callable[..., Result]] = {"closed-form": closed.solve, "fe1d": _fe1d,
-                                            "fe2d": _fe2d, "auto": _auto}
-
-
-def _model(name: str) -> Callable[..., Result]:
-    if name not in MODELS:
-        raise CaseError(f"model = {name!r} is not valid: must be one of "
-                        + ", ".join(repr(m) for m in MODELS))
-    return MODELS[name]
-
-
-def solve(case: Case, model: str = "closed-form", **options) -> Result:
-    """Solve one case with the named model (see :data:`MODELS`).
-
-    ``mesh=PATH`` (FE models): start from the x nodes of a mesh file (metres; e.g. one of
-    ``meshes/``) instead of webfem's graded mesh.
+    Examples
+    --------
+    >>> import webfem
+    >>> r = webfem.solve(webfem.Case(), model="closed-form")
+    >>> r["model"], round(r["mu"], 3)
+    ('closed-form', 0.177)
     """
-    if "mesh" in options:
-        from .io.meshes import read_x_nodes
-        options = dict(options)
-        options["nodes"] = read_x_nodes(options.pop("mesh")) / case.x_scale
-    result = _model(model)(case, **options)
-    _flag_validity(result)
+    spec = model_spec(model)
+    opts = make_options(model, options, **values)
+    result = spec.solve(case, opts, initial=initial)
+    for text in result.summary.warnings:
+        warnings.warn(text, ValidityWarning, stacklevel=2)
     return result
 
 
-#: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
-MEAN_FREE_PATH = 68e-9
+def solve_along(cases: Iterable[Case], model: str = "closed-form", options=None, *,
+                keep_failures: bool = True, initial: Result | None = None,
+                **values) -> Iterator[Result]:
+    """Solve cases in order, each started from the previous converged result.
 
-
-def _flag_validity(result: Result) -> None:
-    """Add the slip-flow warning where the film is thin against the mean free path, then
-    issue every warning of the result as a :class:`ValidityWarning`."""
-    import warnings
-
-    s = result.summary
-    mfp = MEAN_FREE_PATH * 101325.0 / result.case.air.ambient_pressure
-    if 0.0 < s["h_min"] < 10.0 * mfp:
-        s.setdefault("warnings", []).append(
-            f"h_min = {s['h_min']:.3g} m is below 10 mean free paths of air ({10 * mfp:.3g} m): "
-            "slip flow, where the continuum Reynolds equation overestimates the film pressure")
-    for text in s.get("warnings", []):
-        warnings.warn(text, ValidityWarning, stacklevel=3)
+    This is webfem's one continuation loop: sweeps, traction-loss scans and studies walk
+    their paths through it. A point that does not converge is yielded as its unconverged
+    result (``converged = False``; with ``keep_failures=False`` the ConvergenceError is
+    raised instead) and the next point starts cold.
+    """
+    opts = make_options(model, options, **values)
+    previous = initial
+    for case in cases:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)   # carried in the result
+                result = solve(case, model, initial=previous, options=opts)
+        except ConvergenceError as err:
+            if not keep_failures or err.result is None:
+                raise
+            previous = None
+            yield err.result
+            continue
+        previous = result
+        yield result
 
 
 def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = None,
-          **options) -> Iterator[tuple[str, float, Result]]:
-    """Yield ``(series_label, value, result)`` over a sweep.
+          options=None, **values) -> Iterator[tuple[str, float, Result]]:
+    """Yield ``(series_label, value, result)`` over a sweep, in memory.
 
-    The closed form is evaluated for all points of a series at once; FE models solve point by
-    point, each started from the previous converged point of its series (continuation). A
-    point that fails to converge is yielded with ``converged = False`` (its summary says why)
-    and the sweep goes on.
+    The closed form is evaluated for all points at once; FE models walk each series with
+    continuation (:func:`solve_along`). A point that fails is yielded with
+    ``converged = False`` and the sweep goes on. For resumable sweeps written to files see
+    :func:`webfem.sweeps.run`.
     """
     points = list(spec.points())
+    total = len(points)
     if model == "closed-form":
-        results = closed.solve_many([c for _, _, c in points])
+        from .models.closed import solve_many
+        results = solve_many([c for _, _, c in points])
         for i, ((label, value, _), res) in enumerate(zip(points, results)):
             if progress:
-                progress(i + 1, len(points))
+                progress(i + 1, total)
             yield label, value, res
         return
-    fn = _model(model)
-    previous: dict[str, Result] = {}
-    for i, (label, value, case) in enumerate(points):
-        try:
-            res = fn(case, initial=previous.get(label), **options)
-            previous[label] = res
-        except ConvergenceError as err:
-            # keep the point (marked converged = False) and go on from a cold start
-            res = err.result
-            previous.pop(label, None)
-        if progress:
-            progress(i + 1, len(points))
-        yield label, value, res
+    done = 0
+    for label, base in spec.series:
+        values_ = list(spec.values)
+        cases = [base.updated({spec.parameter: v}) for v in values_]
+        for value, res in zip(values_, solve_along(cases, model, options, **values)):
+            done += 1
+            if progress:
+                progress(done, total)
+            yield label, value, res

@@ -8,23 +8,28 @@ measured quantity. The gap of each row is solved once (friction does not feed ba
 unless sigma is fitted, which re-solves the FE gaps at every trial sigma).
 
 Confidence intervals come from the linearised covariance s^2 (J^T J)^-1 with s^2 the residual
-variance, and Student's t with n - p degrees of freedom.
+variance, and Student's t with n - p degrees of freedom. A constant the data cannot identify
+(the predictions do not change with it, or change only together with another constant, e.g.
+C without rows at several roller speeds) is reported with no interval and a note saying why.
 
 Examples
 --------
->>> import numpy as np
 >>> from webfem import Case
 >>> rows = [{"roller.speed": u, "mu": m} for u, m in zip([2.0, 8.0, 20.0, 30.0, 40.0],
 ...         [0.267, 0.2703, 0.1771, 0.0672, 0.0207])]
 >>> fit = calibrate(rows, Case())
->>> round(fit["estimates"]["mu_cc"], 2)
-0.3
+>>> round(fit.estimates["mu_cc"], 2), fit["estimates"] == fit.estimates
+(0.3, True)
 """
 
 from __future__ import annotations
 
 import csv
+import dataclasses
+import difflib
+import math
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -32,75 +37,249 @@ from scipy.optimize import least_squares
 from scipy.stats import t as student_t
 
 from .api import solve
-from .case import Case, CaseError, valid_keys
-from .errors import ValidityWarning
+from .case import Case, valid_keys
+from .errors import InputError, ValidityWarning
 from .models.closed import case_arrays, evaluate
-from .physics.friction import delta_T_from_mu, local_friction
+from .physics.friction import delta_T_from_mu, friction_for
 
-__all__ = ["read_measurements", "calibrate", "COLUMN_ALIASES"]
+__all__ = ["Calibration", "read_measurements", "calibrate", "COLUMN_ALIASES"]
 
 #: Short column names accepted in measurement files, and the case keys they set.
 COLUMN_ALIASES = {"roller_speed": "roller.speed", "speed": "roller.speed",
                   "tension": "web.tension", "wrap_deg": "wrap.angle_deg",
                   "width": "web.width", "radius": "roller.radius", "web_speed": "web.speed"}
+#: The measured quantities a row may carry (one of them, the same in every row).
+MEASURED = {"delta_T": "tension increase before slip [N/m]", "mu": "friction coefficient [-]"}
+#: How to make the data identify each constant.
+_HINTS = {"mu_cc": "rows where asperity contact carries load (low speeds)",
+          "speed_constant": "rows at several roller speeds in boundary or mixed lubrication",
+          "sigma": "rows in mixed lubrication at several speeds or tensions"}
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """The answer of :func:`calibrate`.
+
+    ``estimates``, ``stderr`` and ``ci95`` (half widths of the 95 % intervals) map each
+    constant's name to a number; ``stderr`` and ``ci95`` are None for a constant the data
+    cannot identify (``identified`` False; ``notes`` says why). ``observed``,
+    ``predicted``, ``residuals`` per row in the ``measured`` quantity; ``cases`` the rows'
+    cases. ``fit["estimates"]`` reads a field too.
+    """
+
+    model: str
+    measured: str
+    estimates: dict
+    stderr: dict
+    ci95: dict
+    identified: dict
+    observed: np.ndarray
+    predicted: np.ndarray
+    residuals: np.ndarray
+    rms: float
+    dof: int
+    converged: bool
+    message: str
+    cases: tuple
+    notes: tuple = ()
+
+    def __getitem__(self, key: str):
+        if not isinstance(key, str) or key not in {f.name for f in dataclasses.fields(self)}:
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def to_dict(self) -> dict:
+        """The JSON object of ``webfem calibrate --json``: strict JSON values (a non-finite
+        number becomes None and gets a line in ``notes``)."""
+        notes = list(self.notes)
+
+        def plain(value, where):
+            if isinstance(value, dict):
+                return {k: plain(v, f"{where}.{k}") for k, v in value.items()}
+            if isinstance(value, (list, tuple, np.ndarray)):
+                return [plain(v, f"{where}[{i}]") for i, v in enumerate(value)]
+            if isinstance(value, (bool, np.bool_)):
+                return bool(value)
+            if isinstance(value, (int, np.integer)):
+                return int(value)
+            if isinstance(value, (float, np.floating)):
+                if not math.isfinite(value):
+                    notes.append(f"{where} = {float(value)} is not finite: written as null")
+                    return None
+                return float(value)
+            return value
+
+        keys = ("model", "measured", "estimates", "stderr", "ci95", "identified", "rms",
+                "dof", "converged", "message", "observed", "predicted", "residuals")
+        out = {k: plain(getattr(self, k), k) for k in keys}
+        out["notes"] = notes
+        return out
+
+
+def _column(name: str, path: Path) -> str:
+    """The case key or measured quantity a column header means."""
+    key = COLUMN_ALIASES.get(name, name)
+    if key in valid_keys() or key in MEASURED:
+        return key
+    valid = list(COLUMN_ALIASES) + valid_keys() + list(MEASURED)
+    close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
+    hint = (f"did you mean '{close[0]}'?" if close else
+            "use case keys (e.g. roller.speed), the aliases " + ", ".join(COLUMN_ALIASES)
+            + ", and delta_T or mu")
+    raise InputError(f"{path}: unknown column '{name}'; {hint}")
+
+
+def _check_measured(key: str, value: float, where: str) -> None:
+    if not math.isfinite(value):
+        raise InputError(f"{where}: {key} = {value!r} is not finite: a measured "
+                         f"{MEASURED[key]} must be a finite number >= 0")
+    if value < 0.0:
+        raise InputError(f"{where}: {key} = {value!r} is negative: a measured "
+                         f"{MEASURED[key]} must be >= 0")
 
 
 def read_measurements(path) -> list[dict]:
-    """Rows of a measurement CSV: case keys (dotted or the short aliases of
-    :data:`COLUMN_ALIASES`) and one measured column, ``delta_T`` [N/m] or ``mu``."""
+    """Rows of a measurement CSV (UTF-8): case keys (dotted or the short aliases of
+    :data:`COLUMN_ALIASES`) and one measured column, ``delta_T`` [N/m] or ``mu``.
+
+    Lines starting with ``#`` are comments. Each bad cell is an :class:`InputError` naming
+    the file, line and column: unknown columns (with the closest valid name), text where a
+    number belongs, non-finite values, negative measurements.
+    """
     path = Path(path)
+    if not path.exists():
+        raise InputError(f"measurement file '{path}' does not exist")
     if not path.is_file():
-        raise CaseError(f"measurement file '{path}' does not exist")
-    with path.open(newline="") as fh:
-        reader = csv.DictReader(row for row in fh if not row.lstrip().startswith("#"))
-        rows = []
-        for i, raw in enumerate(reader, start=2):
-            row = {}
-            for k, v in raw.items():
-                key = COLUMN_ALIASES.get(k.strip(), k.strip())
-                if key not in valid_keys() and key not in ("delta_T", "mu"):
-                    raise CaseError(f"{path}: unknown column '{k}'; use case keys (e.g. "
-                                    "roller.speed), the aliases " + ", ".join(COLUMN_ALIASES)
-                                    + ", and delta_T or mu")
-                try:
-                    row[key] = float(v)
-                except (TypeError, ValueError):
-                    raise CaseError(f"{path}, line {i}: column '{k}' = {v!r} is not a number")
-            rows.append(row)
+        raise InputError(f"measurement file '{path}' is not a file")
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise InputError(f"{path}: not UTF-8 text (byte {err.object[err.start]:#04x} at "
+                         f"offset {err.start}); save the file as UTF-8 CSV") from None
+    lines = [(i, line) for i, line in enumerate(text.splitlines(), start=1)
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise InputError(f"{path}: no header and no measurement rows")
+    reader = csv.reader(line for _, line in lines)
+    header = [h.strip() for h in next(reader)]
+    keys = [_column(h, path) for h in header]
+    for key in set(keys):
+        names = [h for h, k in zip(header, keys) if k == key]
+        if len(names) > 1:
+            raise InputError(f"{path}: columns {' and '.join(map(repr, names))} both set "
+                             f"{key}: keep one")
+    rows = []
+    for (line_no, _), cells in zip(lines[1:], reader):
+        where = f"{path}, line {line_no}"
+        if len(cells) != len(header):
+            raise InputError(f"{where}: {len(cells)} values for {len(header)} columns "
+                             f"({', '.join(header)})")
+        row = {}
+        for name, key, cell in zip(header, keys, cells):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise InputError(f"{where}: column '{name}' = {cell.strip()!r} is not a "
+                                 "number") from None
+            if key in MEASURED:
+                _check_measured(key, value, where)
+            elif not math.isfinite(value):
+                raise InputError(f"{where}: column '{name}' = {cell.strip()!r} is not finite")
+            row[key] = value
+        rows.append(row)
     if not rows:
-        raise CaseError(f"{path}: no measurement rows")
+        raise InputError(f"{path}: no measurement rows")
     return rows
 
 
-def _wrap_samples(result) -> tuple[np.ndarray, np.ndarray]:
-    """Gap at the wrap's quadrature points and weights summing to 1, for any model."""
+def _wrap_samples(result) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Gap at the wrap's quadrature points, weights summing to 1, and whether the gap was
+    solved (FE: the web rests on its asperities, :func:`friction_for`'s ``resting``)."""
     if "wrap_h" in result.diagnostics:
-        return result.diagnostics["wrap_h"], result.diagnostics["wrap_w"]
+        return result.diagnostics["wrap_h"], result.diagnostics["wrap_w"], True
     # closed form: the gap is linear; a fine Gauss rule over its fields is ample
     x, h = result.fields["x"], result.fields["h"]
     g, w = np.polynomial.legendre.leggauss(400)
     s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
-    return np.interp(s, x, h), 0.5 * w
+    return np.interp(s, x, h), 0.5 * w, False
+
+
+def _identifiability(J: np.ndarray, p: np.ndarray, obs: np.ndarray, names) -> dict:
+    """Which constants the data identify, from the Jacobian at the fit.
+
+    Relative sensitivities S_j = p_j dr/dp_j: a column below 1e-7 of the data's size is flat
+    (the predictions do not depend on that constant); among the others, columns whose
+    normalised directions leave a singular value below 1e-6 of the largest are
+    rank-deficient (the constants act only together). Both thresholds sit orders of
+    magnitude above the finite-difference noise of the Jacobian (about 1e-10).
+    """
+    S = J * p
+    norms = np.linalg.norm(S, axis=0)
+    scale = max(float(np.linalg.norm(obs)), 1e-300)
+    why = {}
+    live = []
+    for j, name in enumerate(names):
+        if norms[j] <= 1e-7 * scale:
+            why[name] = (f"{name} cannot be identified: the predictions do not change with "
+                         f"it; add {_HINTS[name]}")
+        else:
+            live.append(j)
+    if len(live) > 1:
+        U, s, Vt = np.linalg.svd(S[:, live] / norms[live], full_matrices=False)
+        if s[-1] <= 1e-6 * s[0]:
+            involved = [names[live[i]] for i in np.nonzero(np.abs(Vt[-1]) > 0.1)[0]]
+            for name in involved:
+                others = " and ".join(n for n in involved if n != name)
+                why[name] = (f"{name} cannot be identified: the predictions change with it "
+                             f"only together with {others}; add {_HINTS[name]}")
+    return why
 
 
 def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
-              fit_sigma: bool = False, x0=None, **options) -> dict:
+              fit_sigma: bool = False, x0=None, options=None, **values) -> Calibration:
     """Fit mu_cc, C (and sigma) to measured rows; see the module docstring.
 
-    Returns a dict: ``estimates``, ``stderr``, ``ci95`` (half widths), ``measured`` (name),
-    ``observed``, ``predicted``, ``residuals``, ``rms``, ``dof``, ``model``, ``cases``.
+    Parameters
+    ----------
+    rows : list of dict
+        Case keys (dotted) and exactly one measured key, ``delta_T`` or ``mu`` (finite,
+        >= 0), the same in every row; more rows than constants.
+    case : Case
+        Everything the rows leave out.
+    model : str
+        The model whose gaps the friction is evaluated on.
+    fit_sigma : bool
+        Also fit the web roughness sigma.
+    x0 : sequence, optional
+        Start values (default: the case's constants).
+    options, **values
+        The model's options.
+
+    Returns
+    -------
+    Calibration
     """
-    measured = {"delta_T", "mu"} & set(rows[0])
-    if len(measured) != 1 or any(set(r) & {"delta_T", "mu"} != measured for r in rows):
-        raise CaseError("each measurement row needs exactly one of delta_T or mu, the same in "
-                        "every row")
+    if not rows:
+        raise InputError("no measurement rows")
+    measured = set(MEASURED) & set(rows[0])
+    if len(measured) != 1 or any(set(r) & set(MEASURED) != measured for r in rows):
+        raise InputError("each measurement row needs exactly one of delta_T or mu, the same "
+                         "in every row")
     measured = measured.pop()
     names = ["mu_cc", "speed_constant"] + (["sigma"] if fit_sigma else [])
     if len(rows) <= len(names):
-        raise CaseError(f"{len(rows)} rows cannot fit {len(names)} constants: need more rows")
-    cases = [case.updated({k: v for k, v in r.items() if k not in ("delta_T", "mu")})
-             for r in rows]
-    obs = np.array([r[measured] for r in rows])
+        raise InputError(f"{len(rows)} rows cannot fit {len(names)} constants: need more rows")
+    cases = []
+    for i, r in enumerate(rows, start=1):
+        value = r[measured]
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+            raise InputError(f"measurement row {i}: {measured} = {value!r} is not a number")
+        _check_measured(measured, float(value), f"measurement row {i}")
+        try:
+            cases.append(case.updated({k: v for k, v in r.items() if k not in MEASURED}))
+        except InputError as err:
+            raise InputError(f"measurement row {i}: {err}") from None
+    obs = np.array([float(r[measured]) for r in rows])
     web_sigma = case.web.roughness
     gaps: dict = {}
 
@@ -111,7 +290,8 @@ def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
             for c in cases:
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", ValidityWarning)
-                    r = solve(c.updated({"web.roughness": sigma}), model=model, **options)
+                    r = solve(c.updated({"web.roughness": sigma}), model=model,
+                              options=options, **values)
                 out.append(_wrap_samples(r))
             gaps[key] = out
         return gaps[key]
@@ -126,21 +306,26 @@ def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
                           distribution=case.friction.distribution)["mu"]
         else:
             mu = np.empty(len(cases))
-            for i, (c, (h, w)) in enumerate(zip(cases, gap_samples(sigma))):
-                loc = local_friction(h, R=c.roller.radius, T=c.web.tension, U_s=c.U_slide,
-                                     eta=c.air.viscosity, E_b=c.web.modulus_thickness,
-                                     sigma=sigma, t=c.web.thickness, mu_cc=mu_cc, C=C,
-                                     variant=c.friction.variant,
-                                     distribution=c.friction.distribution)
-                mu[i] = np.sum(loc["mu"] * w)
+            for i, (c, (h, w, resting)) in enumerate(zip(cases, gap_samples(sigma))):
+                c = c.updated({"web.roughness": sigma, "friction.mu_cc": mu_cc,
+                               "friction.speed_constant": C})
+                mu[i] = np.sum(friction_for(c, h, resting)["mu"] * w)
         if measured == "mu":
-            return mu
+            return np.asarray(mu, float)
         return np.array([delta_T_from_mu(m, c.web.tension, c.B) for m, c in zip(mu, cases)])
 
     start = np.array(x0 if x0 is not None else
                      [case.friction.mu_cc, case.friction.speed_constant]
                      + ([web_sigma] if fit_sigma else []), float)
-    scale = np.abs(start) + 1e-12
+    if start.shape != (len(names),) or not np.all(np.isfinite(start) & (start > 0)):
+        raise InputError(f"x0 = {x0!r} is not valid: must be {len(names)} finite numbers > 0 "
+                         f"({', '.join(names)})")
+    bad = np.nonzero(~np.isfinite(predict(start)))[0]
+    if bad.size:
+        raise InputError(f"the {model} model predicts no finite {measured} for measurement "
+                         f"rows {', '.join(str(i + 1) for i in bad)} (e.g. contact cannot "
+                         "carry T/R there): check those rows' case values")
+    scale = np.abs(start)
     fit = least_squares(lambda q: predict(q * scale) - obs, start / scale,
                         bounds=(np.full(start.size, 1e-9), np.full(start.size, np.inf)),
                         x_scale="jac", diff_step=1e-6)
@@ -149,16 +334,22 @@ def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
     dof = len(obs) - len(p)
     s2 = float(res @ res) / dof
     J = fit.jac / scale                      # d residual / d p
-    try:
-        cov = s2 * np.linalg.inv(J.T @ J)
-    except np.linalg.LinAlgError:
-        cov = np.full((len(p), len(p)), np.inf)
-    se = np.sqrt(np.maximum(np.diag(cov), 0.0))
-    half = student_t.ppf(0.975, dof) * se
-    return {"model": model, "measured": measured,
-            "estimates": dict(zip(names, map(float, p))),
-            "stderr": dict(zip(names, map(float, se))),
-            "ci95": dict(zip(names, map(float, half))),
-            "observed": obs, "predicted": obs + res, "residuals": res,
-            "rms": float(np.sqrt(np.mean(res**2))), "dof": dof, "cases": cases,
-            "converged": bool(fit.success), "message": fit.message}
+    why = _identifiability(J, p, obs, names)
+    notes = [why[n] for n in names if n in why]
+    keep = [j for j, n in enumerate(names) if n not in why]
+    se = dict.fromkeys(names)
+    half = dict.fromkeys(names)
+    if keep:
+        cov = s2 * np.linalg.pinv(J[:, keep].T @ J[:, keep])
+        t95 = float(student_t.ppf(0.975, dof))
+        for j, v in zip(keep, np.sqrt(np.maximum(np.diag(cov), 0.0))):
+            se[names[j]], half[names[j]] = float(v), t95 * float(v)
+    if s2 == 0.0 and keep:
+        notes.append("the fit is exact (zero residuals): the intervals are 0 because the "
+                     "data show no scatter, not because the constants are known exactly")
+    return Calibration(
+        model=model, measured=measured, estimates=dict(zip(names, map(float, p))),
+        stderr=se, ci95=half, identified={n: n not in why for n in names},
+        observed=obs, predicted=obs + res, residuals=res,
+        rms=float(np.sqrt(np.mean(res**2))), dof=dof, converged=bool(fit.success),
+        message=str(fit.message), cases=tuple(cases), notes=tuple(notes))

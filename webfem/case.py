@@ -3,7 +3,10 @@
 A :class:`Case` groups five frozen sections that mirror the TOML tables
 ``[roller]``, ``[web]``, ``[wrap]``, ``[air]`` and ``[friction]``. Defaults are
 the paper's newsprint on its base rig (Hashimoto, Tables 1 and 2; base case of
-Figs. 10-13 at 20 m/s).
+Figs. 10-13 at 20 m/s). The sections are defined in :mod:`webfem.sections`, sweeps
+(:class:`Sweep`, :func:`load_sweep`) in :mod:`webfem.sweepspec`; both are importable
+from here. Case files are read strictly: a file that is missing, a directory, not UTF-8
+or not TOML, an unknown key or a value out of range is an :class:`InputError` naming it.
 
 Examples
 --------
@@ -14,23 +17,28 @@ Examples
 >>> Case().updated({"web.width": -1})
 Traceback (most recent call last):
 ...
-webfem.case.CaseError: web.width = -1.0 is out of range: must be > 0 [m]
+webfem.errors.InputError: web.width = -1.0 is out of range: must be > 0 [m]
 """
 
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import math
+import sys
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
+
+from .errors import CaseError, InputError  # CaseError: InputError's old name
+from .sections import (_KEYS, _SECTIONS, Air, Friction, Roller, Web, Wrap, _flatten,
+                       _is_key, _show, _unknown, valid_keys)
 
 __all__ = [
     "Air",
     "Case",
     "CaseError",
+    "InputError",
     "Friction",
     "Roller",
     "Sweep",
@@ -41,176 +49,18 @@ __all__ = [
     "parse_assignment",
 ]
 
-
-class CaseError(ValueError):
-    """An input that webfem rejects; the message names the key, its value and the valid range."""
-
-
-def _num(unit: str, lo: float | None = None, hi: float | None = None,
-         lo_open: bool = True, hi_open: bool = True, doc: str = ""):
-    """Field metadata: unit and valid interval (None = unbounded)."""
-    return {"unit": unit, "lo": lo, "hi": hi, "lo_open": lo_open, "hi_open": hi_open, "doc": doc}
+# `Sweep` and `load_sweep` live in webfem.sweepspec (a layer above Case); they stay
+# importable from here, loaded on first use so neither module imports the other at load.
+if TYPE_CHECKING:
+    from .sweepspec import MAX_POINTS, MAX_SERIES, MAX_VALUES, Sweep, load_sweep  # noqa: F401
+_SWEEP_NAMES = ("Sweep", "load_sweep", "MAX_VALUES", "MAX_SERIES", "MAX_POINTS")
 
 
-def _choice(*options: str, doc: str = ""):
-    return {"choices": options, "doc": doc}
-
-
-def _range_text(meta: Mapping[str, Any]) -> str:
-    lo, hi = meta["lo"], meta["hi"]
-    parts = []
-    if lo is not None:
-        parts.append(f"{'>' if meta['lo_open'] else '>='} {lo:g}")
-    if hi is not None:
-        parts.append(f"{'<' if meta['hi_open'] else '<='} {hi:g}")
-    return "must be " + " and ".join(parts) if parts else "must be finite"
-
-
-class _Section:
-    """Shared validation for the frozen section dataclasses."""
-
-    _name = ""
-
-    def __post_init__(self):
-        for f in dataclasses.fields(self):
-            meta = f.metadata
-            key = f"{self._name}.{f.name}"
-            value = getattr(self, f.name)
-            if "choices" in meta:
-                if value not in meta["choices"]:
-                    raise CaseError(f"{key} = {value!r} is not valid: must be one of "
-                                    + ", ".join(repr(c) for c in meta["choices"]))
-                continue
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise CaseError(f"{key} = {value!r} is not a number: expected a value in "
-                                f"{meta['unit']} ({_range_text(meta)})")
-            value = float(value)
-            object.__setattr__(self, f.name, value)
-            lo, hi = meta["lo"], meta["hi"]
-            bad = not math.isfinite(value)
-            if lo is not None:
-                bad |= value <= lo if meta["lo_open"] else value < lo
-            if hi is not None:
-                bad |= value >= hi if meta["hi_open"] else value > hi
-            if bad:
-                raise CaseError(f"{key} = {value!r} is out of range: {_range_text(meta)} "
-                                f"[{meta['unit']}]")
-
-
-@dataclass(frozen=True)
-class Roller(_Section):
-    """The roller. ``radius`` R [m], surface ``speed`` U_r [m/s], RMS ``roughness`` sigma_r [m]."""
-
-    _name = "roller"
-    radius: float = field(default=0.055, metadata=_num("m", 0.0, doc="roller radius R"))
-    speed: float = field(default=20.0, metadata=_num("m/s", 0.0, lo_open=False,
-                                                      doc="roller surface speed U_r"))
-    roughness: float = field(default=0.6e-6, metadata=_num("m", 0.0, lo_open=False,
-                                                            doc="RMS roughness sigma_r"))
-
-
-@dataclass(frozen=True)
-class Web(_Section):
-    """The web (defaults: newsprint of the paper's Table 1).
-
-    ``width`` L [m], ``tension`` T [N/m], ``speed`` U_w [m/s], ``thickness`` t [m],
-    ``modulus_thickness`` E_b [Pa], ``modulus_md`` E_m [Pa], RMS ``roughness`` sigma_w [m],
-    ``permeability`` k [m^2], ``bending_stiffness`` D [N m] (0 = membrane, the paper's model).
-    """
-
-    _name = "web"
-    width: float = field(default=0.035, metadata=_num("m", 0.0, doc="web width L"))
-    tension: float = field(default=80.0, metadata=_num("N/m", 0.0, doc="web tension T"))
-    speed: float = field(default=0.0, metadata=_num("m/s", 0.0, lo_open=False,
-                                                     doc="web speed U_w"))
-    thickness: float = field(default=70e-6, metadata=_num("m", 0.0, doc="web thickness t"))
-    modulus_thickness: float = field(default=175e3, metadata=_num(
-        "Pa", 0.0, doc="thickness-direction modulus E_b"))
-    modulus_md: float = field(default=4.46e9, metadata=_num("Pa", 0.0, doc="MD modulus E_m"))
-    roughness: float = field(default=4.0e-6, metadata=_num("m", 0.0, doc="RMS roughness sigma_w"))
-    permeability: float = field(default=5e-15, metadata=_num("m^2", 0.0, lo_open=False,
-                                                             doc="Darcy permeability k"))
-    bending_stiffness: float = field(default=0.0, metadata=_num(
-        "N m", 0.0, lo_open=False, doc="bending stiffness D (0 = membrane)"))
-
-
-@dataclass(frozen=True)
-class Wrap(_Section):
-    """Wrap ``angle_deg`` B in degrees, 0 < B < 360."""
-
-    _name = "wrap"
-    angle_deg: float = field(default=60.0, metadata=_num("deg", 0.0, 360.0,
-                                                          doc="wrap angle B"))
-
-
-@dataclass(frozen=True)
-class Air(_Section):
-    """Air ``viscosity`` eta [Pa s] and ``ambient_pressure`` p_a [Pa]."""
-
-    _name = "air"
-    viscosity: float = field(default=1.81e-5, metadata=_num("Pa s", 0.0, doc="viscosity eta"))
-    ambient_pressure: float = field(default=101325.0, metadata=_num(
-        "Pa", 0.0, doc="ambient pressure p_a"))
-
-
-@dataclass(frozen=True)
-class Friction(_Section):
-    """Friction constants and model variants.
-
-    ``mu_cc`` [-] and ``speed_constant`` C [m/s] are the paper's Eq. 29 constants.
-    ``variant``: ``"paper"`` reproduces Eqs. 13 and 29 as printed (with their jumps at
-    h = h_c and h = 3 sigma); ``"continuous"`` removes the jumps (see
-    :mod:`webfem.physics.friction`). ``roughness``: ``"web"`` uses sigma = sigma_w as
-    the paper does, ``"composite"`` uses sqrt(sigma_r^2 + sigma_w^2). ``distribution``:
-    asperity heights ``"exponential"`` (Eq. 2, the paper's) or ``"gaussian"`` (Eq. 1).
-    """
-
-    _name = "friction"
-    mu_cc: float = field(default=0.3, metadata=_num("-", 0.0, lo_open=False,
-                                                     doc="asperity friction constant mu_cc"))
-    speed_constant: float = field(default=0.4, metadata=_num("m/s", 0.0,
-                                                             doc="speed constant C"))
-    variant: str = field(default="paper", metadata=_choice(
-        "paper", "continuous", doc="Eqs. 13, 29 as printed, or without their jumps"))
-    roughness: str = field(default="web", metadata=_choice(
-        "web", "composite", doc="sigma = sigma_w (paper) or sqrt(sigma_r^2 + sigma_w^2)"))
-    distribution: str = field(default="exponential", metadata=_choice(
-        "exponential", "gaussian", doc="asperity heights: Eq. 2 (paper) or Eq. 1"))
-
-
-_SECTIONS: dict[str, type[_Section]] = {
-    "roller": Roller, "web": Web, "wrap": Wrap, "air": Air, "friction": Friction,
-}
-
-
-def valid_keys() -> list[str]:
-    """All dotted case keys, e.g. ``'roller.speed'``."""
-    return [f"{s}.{f.name}" for s, cls in _SECTIONS.items() for f in dataclasses.fields(cls)]
-
-
-def _unknown(key: str, where: str = "") -> CaseError:
-    close = difflib.get_close_matches(key, valid_keys() + list(_SECTIONS), n=1, cutoff=0.5)
-    hint = f"; did you mean '{close[0]}'?" if close else "; valid keys: " + ", ".join(valid_keys())
-    return CaseError(f"unknown key '{key}'{where}{hint}")
-
-
-def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
-    """``{"roller": {"speed": 1}}`` -> ``{"roller.speed": 1}``, rejecting unknown keys."""
-    flat = {}
-    for section, table in data.items():
-        if section not in _SECTIONS:
-            if isinstance(table, Mapping):
-                raise _unknown(section, where)
-            flat[section] = table  # dotted key already, checked below
-            continue
-        if not isinstance(table, Mapping):
-            raise CaseError(f"'{section}'{where} must be a table of keys, got {table!r}")
-        for key, value in table.items():
-            flat[f"{section}.{key}"] = value
-    for key in flat:
-        if key not in valid_keys():
-            raise _unknown(key, where)
-    return flat
+def __getattr__(name: str):
+    if name in _SWEEP_NAMES:
+        from . import sweepspec
+        return getattr(sweepspec, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass(frozen=True)
@@ -245,21 +95,30 @@ class Case:
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], where: str = "") -> "Case":
         """Build from nested tables (as in TOML) or dotted keys; unknown keys are errors."""
-        return cls().updated(_flatten(data, where))
+        try:
+            return cls().updated(_flatten(data, where))
+        except InputError as err:
+            if where and where not in str(err):
+                raise InputError(f"{err}{where}") from None
+            raise
 
     def updated(self, values: Mapping[str, Any]) -> "Case":
         """A copy with dotted keys replaced, e.g. ``{"roller.speed": 5.0}``."""
-        sections = {name: dataclasses.asdict(getattr(self, name)) for name in _SECTIONS}
+        changed: dict[str, dict[str, Any]] = {}
         for key, value in values.items():
-            if key not in valid_keys():
+            if not _is_key(key):
                 raise _unknown(key)
             section, name = key.split(".", 1)
-            sections[section][name] = value
-        return Case(**{name: _SECTIONS[name](**kw) for name, kw in sections.items()})
+            if section not in changed:
+                changed[section] = dataclasses.asdict(getattr(self, section))
+            changed[section][name] = value
+        # untouched sections are frozen and valid: share them (sweeps build many cases)
+        return dataclasses.replace(self, **{section: _SECTIONS[section](**kw)
+                                            for section, kw in changed.items()})
 
     def get(self, key: str) -> Any:
         """Value of a dotted key, e.g. ``case.get("web.tension")``."""
-        if key not in valid_keys():
+        if not _is_key(key):
             raise _unknown(key)
         section, name = key.split(".", 1)
         return getattr(getattr(self, section), name)
@@ -351,109 +210,45 @@ def _toml_value(value: Any) -> str:
     return str(value)
 
 
-@dataclass(frozen=True)
-class Sweep:
-    """A parameter sweep: one swept dotted key and one or more curve families (series).
-
-    TOML::
-
-        [sweep]
-        parameter = "roller.speed"
-        start = 0.5
-        stop = 40.0
-        num = 60            # or: values = [1, 2, 5]; spacing = "linear" | "log"
-
-        [[series]]
-        label = "B = 20 deg"
-        wrap = { angle_deg = 20 }
-    """
-
-    parameter: str
-    values: tuple[float, ...]
-    series: tuple[tuple[str, Case], ...]
-
-    def points(self):
-        """Yield ``(series_label, value, case)`` for every point of every series."""
-        for label, base in self.series:
-            for value in self.values:
-                yield label, value, base.updated({self.parameter: value})
-
-
-def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str) -> Sweep:
-    import numpy as np
-
-    spec = dict(data.get("sweep", {}))
-    allowed = {"parameter", "values", "start", "stop", "num", "spacing"}
-    for key in spec:
-        if key not in allowed:
-            close = difflib.get_close_matches(key, sorted(allowed), n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            raise CaseError(f"unknown key 'sweep.{key}'{where}{hint}")
-    parameter = spec.get("parameter", "roller.speed")
-    if parameter not in valid_keys():
-        raise _unknown(parameter, where + " (sweep.parameter)")
-    if "values" in spec:
-        values = tuple(float(v) for v in spec["values"])
-    elif {"start", "stop"} <= spec.keys():
-        num = int(spec.get("num", 40))
-        if num < 1:
-            raise CaseError(f"sweep.num = {num}{where} is out of range: must be >= 1")
-        spacing = spec.get("spacing", "linear")
-        if spacing == "log":
-            values = tuple(np.geomspace(spec["start"], spec["stop"], num).tolist())
-        elif spacing == "linear":
-            values = tuple(np.linspace(spec["start"], spec["stop"], num).tolist())
-        else:
-            raise CaseError(f"sweep.spacing = {spacing!r}{where} is not valid: "
-                            "must be 'linear' or 'log'")
-    elif "sweep" in data:
-        raise CaseError(f"[sweep]{where} needs 'values' or 'start' and 'stop'")
-    else:  # default: the paper's speed range
-        values = tuple(np.linspace(0.5, 40.0, 60).tolist())
-    if not values:
-        raise CaseError(f"sweep.values{where} is empty")
-    series = []
-    for i, entry in enumerate(data.get("series", [])):
-        entry = dict(entry)
-        label = str(entry.pop("label", f"series {i + 1}"))
-        series.append((label, case.updated(_flatten(entry, f"{where} (series '{label}')"))))
-    if not series:
-        series = [("base", case)]
-    # validate every point now so a long sweep does not fail half way
-    for label, base in series:
-        for value in values:
-            try:
-                base.updated({parameter: value})
-            except CaseError as err:
-                raise CaseError(f"{err}{where} (series '{label}', {parameter} = {value:g})") \
-                    from None
-    return Sweep(parameter, values, tuple(series))
-
-
 def _read_toml(path: str | Path) -> tuple[dict[str, Any], str]:
+    """The tables of a TOML case file and the ``" in FILE"`` suffix for messages."""
     path = Path(path)
-    if not path.is_file():
+    if path.is_dir():
+        raise CaseError(f"case file '{path}' is a directory: give a .toml file")
+    if not path.exists():
         raise CaseError(f"case file '{path}' does not exist")
+    if not path.is_file():
+        raise CaseError(f"case file '{path}' is not a regular file: give a .toml file")
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh), f" in {path}"
+        raw = path.read_bytes()
+    except OSError as err:
+        raise CaseError(f"case file '{path}' cannot be read: {err.strerror or err}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = raw[:err.start].count(b"\n") + 1
+        raise CaseError(f"case file '{path}' is not UTF-8 text (byte 0x{raw[err.start]:02x} "
+                        f"on line {line}): save it as UTF-8") from None
+    try:
+        # a byte-order mark (some Windows editors write one) is not TOML but harmless
+        return tomllib.loads(text.removeprefix("\ufeff")), f" in {path}"
     except tomllib.TOMLDecodeError as err:
         raise CaseError(f"{path}: malformed TOML: {err}") from None
+    except ValueError:  # an integer literal beyond Python's digit limit (4300 digits)
+        raise CaseError(f"{path}: a number is out of range (an integer of more than "
+                        f"{sys.get_int_max_str_digits()} digits)") from None
 
 
-def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Case:
-    """Read a case TOML file (``[sweep]`` and ``[[series]]`` tables are ignored here)."""
-    data, where = _read_toml(path)
+def _case_from_tables(data: Mapping[str, Any], where: str,
+                      overrides: Mapping[str, Any] | None) -> Case:
     tables = {k: v for k, v in data.items() if k not in ("sweep", "series")}
     case = Case.from_dict(tables, where)
     return case.updated(overrides) if overrides else case
 
 
-def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Sweep:
-    """Read a case TOML file with its ``[sweep]`` and ``[[series]]`` tables."""
-    data, where = _read_toml(path)
-    case = load_case(path, overrides)
-    return _sweep_from_dict(case, data, where)
+def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Case:
+    """Read a case TOML file (``[sweep]`` and ``[[series]]`` tables are ignored here)."""
+    return _case_from_tables(*_read_toml(path), overrides)
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
@@ -463,12 +258,14 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     ('roller.speed', 12.5)
     """
     if "=" not in text:
-        raise CaseError(f"--set {text!r}: expected section.key=value")
+        raise CaseError(f"--set {_show(text)}: expected section.key=value")
     key, raw = (s.strip() for s in text.split("=", 1))
-    if key not in valid_keys():
+    if key not in _KEYS:
         raise _unknown(key, " (--set)")
+    if "\n" in raw or "\r" in raw:  # TOML would read the next line as more keys
+        raise CaseError(f"--set {key} = {_show(raw)}: the value must be on one line")
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
+    except ValueError:  # not TOML (a bare word), or an integer past the digit limit
         value = raw
     return key, value

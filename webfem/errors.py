@@ -1,8 +1,41 @@
-"""Errors webfem raises beyond input validation (:class:`webfem.case.CaseError`)."""
+"""What webfem raises: bad input, no converged solution, and warnings on legal inputs.
+
+* :class:`InputError` (a ``ValueError``; ``CaseError`` is the same class under its old
+  name): an input webfem rejects. The message names the key or option, its value and what
+  is valid. The command line exits with status 2.
+* :class:`ConvergenceError`: no converged, admissible solution was found. The command line
+  exits with status 3.
+* :class:`ValidityWarning`: a legal input outside a model's validity; the result carries
+  the same text in its ``warnings``.
+"""
 
 from __future__ import annotations
 
-__all__ = ["ConvergenceError", "ValidityWarning"]
+import difflib
+
+__all__ = ["InputError", "CaseError", "ConvergenceError", "ValidityWarning", "unknown_name"]
+
+
+class InputError(ValueError):
+    """An input that webfem rejects; the message names the key, its value and the valid range."""
+
+
+#: The name this error had before options were typed; kept for scripts that catch it.
+CaseError = InputError
+
+
+def unknown_name(kind: str, name: str, valid, where: str = "") -> InputError:
+    """The error for a misspelt name: ``kind`` ('key', 'fe1d option' ...) with the closest
+    valid name, else the list of valid ones.
+
+    >>> str(unknown_name("fe1d option", "levle", ["level", "entry"]))
+    "unknown fe1d option 'levle'; did you mean 'level'?"
+    """
+    valid = list(valid)
+    close = difflib.get_close_matches(str(name), valid, n=1, cutoff=0.5)
+    hint = (f"; did you mean '{close[0]}'?" if close
+            else "; valid: " + ", ".join(valid) if valid else "; it takes none")
+    return InputError(f"unknown {kind} '{name}'{where}{hint}")
 
 
 class ValidityWarning(UserWarning):
@@ -11,7 +44,7 @@ class ValidityWarning(UserWarning):
 
 
 class ConvergenceError(RuntimeError):
-    """A solve did not meet its tolerance.
+    """A solve did not produce a converged, admissible solution.
 
     ``result`` is the last iterate as a :class:`webfem.result.Result` with
     ``converged = False`` (for inspection only, never an answer) and ``history`` the

@@ -2,115 +2,222 @@
 
 mu(U_r) rises from the boundary-lubrication value at low speed, peaks, and falls as air lifts
 the web (the paper's Stribeck-like curve). The traction-loss speed is where it falls through
-``mu_min`` after the peak: found on a logarithmic scan of roller speeds (each FE point started
-from the previous one) and refined by Brent's method inside the bracketing interval.
+``mu_min`` after the peak: found on a logarithmic scan of roller speeds (walked with
+:func:`webfem.api.solve_along`, each FE point started from the previous one) and refined by
+Brent's method inside the bracketing interval.
 
 Examples
 --------
 >>> from webfem import Case
 >>> out = traction_loss_speed(Case(), 0.1)
->>> round(out["speed"], 1), out["model"]
-(26.3, 'closed-form')
+>>> round(out.speed, 1), out.model, out["speed"] == out.speed
+(26.3, 'closed-form', True)
 """
 
 from __future__ import annotations
 
-import warnings
+import dataclasses
+import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
 
-from .api import solve
-from .case import Case, CaseError
-from .errors import ConvergenceError, ValidityWarning
+from .api import solve_along
+from .case import Case
+from .errors import ConvergenceError, InputError
+from .models.options import Options
+from .models.registry import make_options, model_spec
 
-__all__ = ["traction_loss_speed"]
+__all__ = ["TractionLoss", "traction_loss_speed", "traction_loss_table", "mu_curve",
+           "CHART_PARAMETERS"]
 
 
-def _mu(case: Case, speed: float, model: str, options: dict, initial=None):
-    c = case.updated({"roller.speed": float(speed)})
-    extra = {"initial": initial} if initial is not None else {}
+@dataclass(frozen=True)
+class TractionLoss:
+    """The answer of :func:`traction_loss_speed`.
+
+    ``speed`` [m/s] is None when mu never reaches ``mu_min`` in the scanned range or never
+    falls below it; ``bracket`` the scan interval holding the crossing; ``evaluations`` the
+    number of solves; ``message`` says what was found. ``out["speed"]`` reads a field too.
+    """
+
+    speed: float | None
+    model: str
+    mu_min: float
+    mu_peak: float
+    speed_peak: float
+    bracket: tuple[float, float] | None
+    evaluations: int
+    message: str
+
+    def __getitem__(self, key: str):
+        if not isinstance(key, str) or key not in self.keys():
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def keys(self) -> list[str]:
+        return [f.name for f in dataclasses.fields(self)]
+
+    def to_dict(self) -> dict:
+        """JSON-safe: the bracket as a list, non-finite numbers as None."""
+        out = {}
+        for key in self.keys():
+            value = getattr(self, key)
+            if isinstance(value, tuple):
+                value = list(value)
+            elif isinstance(value, float) and not math.isfinite(value):
+                value = None
+            out[key] = value
+        return out
+
+
+def _scan(case: Case, speeds, model: str, opts: Options, initial=None):
+    """Results at ``speeds`` in order with continuation; a failed solve is an error naming
+    its speed (a scan with a hole could miss the crossing)."""
+    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    out = []
     try:
-        with warnings.catch_warnings():   # a scan crosses validity ranges on purpose
-            warnings.simplefilter("ignore", ValidityWarning)
-            r = solve(c, model=model, **extra, **options)
+        for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):
+            out.append(res)
     except ConvergenceError as err:
-        raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = {speed:.4g} "
-                               f"m/s did not converge", err.result, err.history) from None
-    return r
+        u = float(speeds[len(out)])
+        raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = {u:.4g} "
+                               f"m/s did not converge ({err})", err.result,
+                               err.history) from None
+    return out
 
 
 def traction_loss_speed(case: Case, mu_min: float, model: str = "closed-form",
                         speed_range=(0.5, 100.0), n_scan: int = 24, xtol: float = 1e-3,
-                        **options) -> dict:
+                        options: Options | dict | None = None, **values) -> TractionLoss:
     """Roller speed [m/s] at which the wrap-averaged mu falls below ``mu_min`` (after its peak).
 
-    Returns a dict with ``speed`` (None if mu never falls below ``mu_min`` in ``speed_range``
-    or never reaches it), ``model``, ``mu_min``, ``mu_peak``, ``speed_peak``, ``bracket``,
-    ``evaluations`` (number of solves) and ``message``. The web speed is the case's.
+    Parameters
+    ----------
+    case : Case
+        The operating point; its roller speed is scanned, the web speed kept.
+    mu_min : float
+        Friction threshold, > 0.
+    model : str
+        A model of :data:`webfem.models.registry.MODELS`.
+    speed_range : (float, float)
+        Roller speeds scanned, 0 <= low < high [m/s].
+    n_scan : int
+        Points of the logarithmic scan (at least 3).
+    xtol : float
+        Brent's tolerance relative to the bracket's low end.
+    options, **values
+        The model's options (an options object, a dict or keywords).
+
+    Returns
+    -------
+    TractionLoss
     """
-    if not 0.0 < mu_min:
-        raise CaseError(f"mu_min = {mu_min!r} is out of range: must be > 0")
-    lo, hi = speed_range
-    if not 0.0 <= lo < hi:
-        raise CaseError(f"speed range = {speed_range!r} is not valid: need 0 <= low < high")
-    fe = model != "closed-form"
+    try:
+        threshold = float(mu_min)
+    except (TypeError, ValueError):
+        threshold = math.nan
+    if isinstance(mu_min, bool) or not (math.isfinite(threshold) and threshold > 0.0):
+        raise InputError(f"mu_min = {mu_min!r} is out of range: must be a finite number > 0")
+    mu_min = threshold
+    try:
+        lo, hi = (float(v) for v in speed_range)
+    except (TypeError, ValueError):
+        raise InputError(f"speed range = {speed_range!r} is not valid: need two speeds "
+                         "0 <= low < high [m/s]") from None
+    if not (math.isfinite(hi) and 0.0 <= lo < hi):
+        raise InputError(f"speed range = {speed_range!r} is not valid: need 0 <= low < high "
+                         "(finite) [m/s]")
+    if isinstance(n_scan, bool) or not isinstance(n_scan, int) or not 3 <= n_scan <= 10_000:
+        raise InputError(f"n_scan = {n_scan!r} is out of range: must be an integer from 3 "
+                         "to 10000")
+    opts = make_options(model, options, **values)
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
-    results, prev = [], None
-    for u in speeds:
-        prev = _mu(case, u, model, options, prev if fe else None)
-        results.append(prev)
-    mu = np.array([r["mu"] for r in results])
+    results = _scan(case, speeds, model, opts)
+    mu = np.array([r["mu"] for r in results], float)
     i_peak = int(np.nanargmax(mu))
-    out = {"model": model, "mu_min": mu_min, "mu_peak": float(mu[i_peak]),
-           "speed_peak": float(speeds[i_peak]), "evaluations": n_scan, "bracket": None,
-           "speed": None}
+    found = dict(model=model, mu_min=float(mu_min), mu_peak=float(mu[i_peak]),
+                 speed_peak=float(speeds[i_peak]), evaluations=n_scan, bracket=None,
+                 speed=None)
     if mu[i_peak] < mu_min:
-        out["message"] = (f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s "
-                          f"(peak {mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s)")
-        return out
+        return TractionLoss(**found, message=(
+            f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
+            f"{mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s)"))
     after = np.nonzero(mu[i_peak:] < mu_min)[0]
     if after.size == 0:
-        out["message"] = f"mu stays above {mu_min:g} up to {hi:g} m/s"
-        return out
+        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s")
     j = i_peak + int(after[0])
-    a, b = speeds[j - 1], speeds[j]
+    a, b = float(speeds[j - 1]), float(speeds[j])
     cache = {a: results[j - 1]}
 
     def f(u):
+        # each evaluation starts from the nearest speed solved so far
         nearest = cache[min(cache, key=lambda v: abs(v - u))]
-        r = _mu(case, u, model, options, nearest if fe else None)
-        cache[u] = r
-        out["evaluations"] += 1
-        return r["mu"] - mu_min
+        cache[u] = _scan(case, [u], model, opts, initial=nearest)[0]
+        found["evaluations"] += 1
+        return cache[u]["mu"] - mu_min
 
-    speed = brentq(f, a, b, xtol=xtol * a, rtol=1e-10)
-    out.update(speed=float(speed), bracket=(float(a), float(b)),
-               message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s")
-    return out
+    speed = float(brentq(f, a, b, xtol=xtol * a, rtol=1e-10))
+    found.update(speed=speed, bracket=(a, b))
+    return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s")
 
 
-#: The paper's operating parameters and the ranges the traction-loss chart spans.
+def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = None
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """mu against roller speed: ``(speeds, mu)``, walked with continuation; a point that does
+    not converge is NaN (a gap in a chart's line).
+
+    >>> u, mu = mu_curve(Case(), "closed-form", [2.0, 30.0])
+    >>> [round(m, 3) for m in mu]
+    [0.267, 0.067]
+    """
+    speeds = np.asarray(speeds, float)
+    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    mu = [r["mu"] if r["converged"] else np.nan
+          for r in solve_along(cases, model, make_options(model, options))]
+    return speeds, np.array(mu, float)
+
+
+#: The paper's operating parameters and the ranges the traction-loss chart spans:
+#: (case key, axis label, (low, high)).
 CHART_PARAMETERS = (("web.tension", "T [N/m]", (40.0, 120.0)),
                     ("wrap.angle_deg", "B [deg]", (20.0, 120.0)),
                     ("web.width", "L [m]", (0.02, 0.2)),
                     ("roller.radius", "R [m]", (0.035, 0.1)))
 
 
+def _options_for(model: str, options):
+    """``options`` belong to the FE model of a comparison: an options object reaches the
+    model of its type only, a dict every model but the closed form."""
+    if options is None:
+        return None
+    if isinstance(options, Options):
+        return options if type(options) is model_spec(model).options else None
+    return None if model == "closed-form" else options
+
+
 def traction_loss_table(case: Case, mu_min: float, models=("closed-form",), n: int = 5,
-                        n_scan: int = 16, progress=None, **options) -> list[dict]:
-    """Traction-loss speed against each operating parameter (others at the case's values)."""
+                        n_scan: int = 16, progress=None, options=None,
+                        **values) -> list[dict]:
+    """Traction-loss speed against each of :data:`CHART_PARAMETERS` (the others at the case's
+    values), ``n`` values each, one row per model and value: ``model``, ``parameter``,
+    ``value``, ``speed`` (None: no loss in range), ``mu_peak``, ``evaluations``.
+
+    ``options`` (or keywords): the FE model's options; the closed form takes its defaults.
+    """
+    options = dict(values) if values and options is None else options
     rows = []
     total = len(models) * len(CHART_PARAMETERS) * n
     for model in models:
+        opts = _options_for(model, options)
         for key, _, (a, b) in CHART_PARAMETERS:
             for value in np.linspace(a, b, n):
                 out = traction_loss_speed(case.updated({key: float(value)}), mu_min, model,
-                                          n_scan=n_scan, **(options if model != "closed-form"
-                                                            else {}))
+                                          n_scan=n_scan, options=opts)
                 rows.append({"model": model, "parameter": key, "value": float(value),
-                             "speed": out["speed"], "mu_peak": out["mu_peak"],
-                             "evaluations": out["evaluations"]})
+                             "speed": out.speed, "mu_peak": out.mu_peak,
+                             "evaluations": out.evaluations})
                 if progress:
                     progress(len(rows), total)
     return rows

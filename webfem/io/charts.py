@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import matplotlib
@@ -74,13 +73,20 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     return _save(fig, path)
 
 
-def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path) -> Path:
-    """Five panels: mu against roller speed with the threshold (the traction-loss speed is
-    where each curve falls through it), then the traction-loss speed against tension, wrap,
-    width and radius, one line per model. ``mu_curves``: model -> (speeds, mu)."""
-    from ..traction import CHART_PARAMETERS
+def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
+                        parameters) -> Path:
+    """Panels: mu against roller speed with the threshold (the traction-loss speed is where
+    each curve falls through it), then the traction-loss speed against each parameter, one
+    line per model.
 
-    fig, axes = plt.subplots(1, 5, figsize=(17, 3.8), constrained_layout=True)
+    ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss); ``mu_curves``:
+    model -> (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
+    :data:`webfem.traction.CHART_PARAMETERS`.
+    """
+    parameters = list(parameters)
+    fig, axes = plt.subplots(1, 1 + len(parameters), figsize=(3.4 * (1 + len(parameters)), 3.8),
+                             constrained_layout=True, squeeze=False)
+    axes = axes[0]
     ax = axes[0]
     for model, (u, mu) in mu_curves.items():
         ax.plot(u, mu, label=model)
@@ -89,7 +95,7 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path) 
     ax.set_ylabel("mu [-]")
     ax.set_title("base case", fontsize=9)
     ax.legend(fontsize=7)
-    for ax, (key, label, _) in zip(axes[1:], CHART_PARAMETERS):
+    for ax, (key, label, *_) in zip(axes[1:], parameters):
         for model in dict.fromkeys(r["model"] for r in rows):
             sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
             ax.plot([r["value"] for r in sel],
@@ -104,23 +110,32 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path) 
 
 
 def _save(fig, path) -> Path:
+    """Save as PNG under a hidden temporary name, then rename: never a half-written chart;
+    created by os.open so the user's umask sets the mode (0644 by default)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.stem, suffix=".png", dir=path.parent)
-    os.close(fd)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
     try:
-        fig.savefig(tmp, dpi=110)
+        os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666))
+        fig.savefig(tmp, dpi=110, format="png")
         os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
     finally:
         plt.close(fig)
+        if tmp.exists():
+            tmp.unlink()
     return path
 
 
+def _pm(value, half) -> str:
+    """``value +- half`` or, when the data cannot bound it, the value alone."""
+    return f"{value:.4g} +- {half:.2g}" if half is not None else f"{value:.4g} (not identified)"
+
+
 def calibration_chart(fit: dict, path) -> Path:
-    """Measured against predicted (with the 1:1 line) and the residuals against roller speed."""
+    """Measured against predicted (with the 1:1 line) and the residuals against roller speed.
+
+    ``fit``: a :class:`webfem.calibrate.Calibration` (or a mapping with its keys).
+    """
     obs, pred = np.asarray(fit["observed"]), np.asarray(fit["predicted"])
     speed = [c.roller.speed for c in fit["cases"]]
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
@@ -130,7 +145,8 @@ def calibration_chart(fit: dict, path) -> Path:
     name = "delta_T [N/m]" if fit["measured"] == "delta_T" else "mu [-]"
     a.set_xlabel(f"measured {name}")
     a.set_ylabel(f"predicted {name} ({fit['model']})")
-    est = ", ".join(f"{k} = {v:.4g} +- {fit['ci95'][k]:.2g}" for k, v in fit["estimates"].items())
+    est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k])}" for k, v in fit["estimates"].items()
+                    if v is not None)
     a.set_title(est + " (95 %)", fontsize=8)
     b.plot(speed, fit["residuals"], "o", ms=4)
     b.axhline(0.0, color="k", lw=0.8)

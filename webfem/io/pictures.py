@@ -1,11 +1,15 @@
 """Pictures of the film (pyvista, off screen): pressure and gap over the wrap domain.
 
-pyvista is imported only when a picture is asked for, so webfem imports without it.
+pyvista is imported only when a picture is asked for, so webfem imports without it. Each
+picture is rendered to a hidden temporary name and renamed, so none is ever half written.
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
+
+from ..errors import InputError
 
 __all__ = ["film_pictures"]
 
@@ -19,9 +23,9 @@ def film_pictures(result, folder, stem: str | None = None) -> list[Path]:
 
     from .vtu import film_mesh
 
-    pv.OFF_SCREEN = True
     if result.film is None:
-        raise ValueError(f"model {result['model']!r} has no film field to draw (use fe2d)")
+        raise InputError(f"model {result['model']!r} has no 2-D film to draw: use fe2d")
+    pv.OFF_SCREEN = True
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     stem = stem or result["model"]
@@ -50,7 +54,13 @@ def film_pictures(result, folder, stem: str | None = None) -> list[Path]:
         plotter.reset_camera(bounds=mesh.bounds)
         plotter.camera.zoom(1.05)
         path = folder / f"{stem}_{'p' if name == 'p_rel' else 'h'}.png"
-        plotter.screenshot(str(path))
-        plotter.close()
+        tmp = path.with_name(f".tmp-{os.getpid()}-{path.name}")   # ends .png for VTK
+        try:
+            plotter.screenshot(str(tmp))
+            os.replace(tmp, path)
+        finally:
+            plotter.close()
+            if tmp.exists():
+                tmp.unlink()
         out.append(path)
     return out

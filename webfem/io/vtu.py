@@ -1,21 +1,27 @@
 """VTU files for ParaView (meshio): the web as a polyline, the film as quadrilaterals.
 
-Files are written to a temporary name in the target folder and renamed, so a failure never
-leaves a half-written file. A sweep's files are tied together by a ``.pvd`` collection
-indexed by the swept value.
+Files appear whole or not at all (hidden temporary file, renamed) with the user's umask.
+A sweep's files (:class:`SweepVtu`) are named by series and point index, carry their series
+label and swept value as field data, and are tied together per series by ``.pvd``
+collections indexed by the swept value.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
+import re
 from pathlib import Path
-from xml.sax.saxutils import quoteattr
+from xml.etree import ElementTree
+from xml.sax.saxutils import escape, quoteattr
 
 import meshio
 import numpy as np
 
-__all__ = ["WEB_FIELDS", "FILM_FIELDS", "web_mesh", "film_mesh", "write_result", "write_pvd"]
+from ..errors import InputError
+from ..sweeps.files import remove_stale_temps, replacing, write_text
+
+__all__ = ["WEB_FIELDS", "FILM_FIELDS", "web_mesh", "film_mesh", "write_result", "write_pvd",
+           "SweepVtu"]
 
 #: Point data of the web polyline.
 WEB_FIELDS = ("w", "h", "p_rel", "p", "p_contact", "chi_c", "mu", "regime", "in_wrap")
@@ -23,17 +29,34 @@ WEB_FIELDS = ("w", "h", "p_rel", "p", "p_contact", "chi_c", "mu", "regime", "in_
 FILM_FIELDS = ("p", "p_rel", "h", "p_contact", "chi_c", "mu", "regime")
 
 
-def _atomic_write(mesh: meshio.Mesh, path: Path) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.stem + ".", suffix=".vtu", dir=path.parent)
-    os.close(fd)
-    try:
+def _field_data(values: dict) -> bytes:
+    """A VTK ``<FieldData>`` block of Float64 arrays (text is kept out of the values: meshio
+    cannot read VTK string arrays)."""
+    lines = ["<FieldData>"]
+    for name, value in values.items():
+        lines.append(f'<DataArray type="Float64" Name={quoteattr(name)} '
+                     f'NumberOfTuples="1" format="ascii">{float(value)!r}</DataArray>')
+    lines.append("</FieldData>\n")
+    return "\n".join(lines).encode("utf-8")
+
+
+def _write_mesh(mesh: meshio.Mesh, path: Path, field_data: dict | None = None) -> Path:
+    with replacing(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+        if field_data:   # meshio's VTU writer drops field data: add it after the grid tag
+            data = tmp.read_bytes()
+            tag = b"<UnstructuredGrid>\n"
+            at = data.index(tag) + len(tag)
+            tmp.write_bytes(data[:at] + _field_data(field_data) + data[at:])
     return path
+
+
+def read_field_data(path: str | Path) -> dict:
+    """The field data :func:`write_result` stored in a VTU file (name -> number)."""
+    head = Path(path).read_bytes()[:65536].decode("utf-8", errors="replace")
+    block = re.search(r"<FieldData>.*?</FieldData>", head, re.S)
+    return {array.get("Name"): float(array.text)
+            for array in ElementTree.fromstring(block.group(0) if block else "<FieldData/>")}
 
 
 def web_mesh(result) -> meshio.Mesh:
@@ -53,35 +76,140 @@ def film_mesh(result) -> meshio.Mesh:
     return meshio.Mesh(film["points"], [("quad", film["quads"])], point_data=data)
 
 
-def write_result(result, folder, stem: str | None = None) -> list[Path]:
+def write_result(result, folder, stem: str | None = None, field_data: dict | None = None
+                 ) -> list[Path]:
     """Write ``STEM_web.vtu`` (and ``STEM_film.vtu`` for 2-D models); returns the paths.
 
     An unconverged result is written with ``_NOT_CONVERGED`` in the names, for inspection.
+    ``field_data`` (name -> number or text) is stored in every file. The film is written
+    before the web, so a web file implies its film file is complete.
     """
     folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
     stem = stem or result["model"]
     if not result["converged"]:
         stem += "_NOT_CONVERGED"
-    paths = [_atomic_write(web_mesh(result), folder / f"{stem}_web.vtu")]
+    paths = []
     if result.film is not None:
-        paths.append(_atomic_write(film_mesh(result), folder / f"{stem}_film.vtu"))
+        paths.append(_write_mesh(film_mesh(result), folder / f"{stem}_film.vtu", field_data))
+    paths.insert(0, _write_mesh(web_mesh(result), folder / f"{stem}_web.vtu", field_data))
     return paths
 
 
-def write_pvd(entries, path) -> Path:
-    """A ParaView collection: ``entries`` are ``(value, file)`` pairs (files relative to the
-    .pvd's folder or absolute); the swept value becomes the collection's time."""
+def write_pvd(entries, path, comment: str = "") -> Path:
+    """A ParaView collection: ``entries`` are ``(value, file)`` or ``(value, file, name)``
+    (files relative to the .pvd's folder or absolute); the swept value becomes the
+    collection's time."""
     path = Path(path)
     lines = ['<?xml version="1.0"?>',
-             '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
-             "  <Collection>"]
-    for value, file in entries:
+             '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">']
+    if comment:
+        lines.append(f"  <!-- {escape(comment).replace('--', '- -')} -->")
+    lines.append("  <Collection>")
+    for value, file, *name in entries:
         rel = os.path.relpath(Path(file), path.parent)
-        lines.append(f'    <DataSet timestep="{float(value)!r}" part="0" file={quoteattr(rel)}/>')
+        named = f" name={quoteattr(name[0])}" if name else ""
+        lines.append(f'    <DataSet timestep="{float(value)!r}" part="0"{named} '
+                     f'file={quoteattr(rel)}/>')
     lines += ["  </Collection>", "</VTKFile>", ""]
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.stem + ".", suffix=".pvd", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write("\n".join(lines))
-    os.replace(tmp, path)
-    return path
+    return write_text(path, "\n".join(lines))
+
+
+_LABEL = "series: "
+
+
+def _tag(label: str) -> str:
+    return "".join(ch if ch.isalnum() else "_" for ch in label).strip("_")[:40]
+
+
+class SweepVtu:
+    """The VTU files of a sweep: ``STEM_sSS_pPPP_web.vtu`` (and ``_film.vtu``) per point,
+    numbered from 1 by series and point, and ``STEM_sSS_TAG_web.pvd`` per series and part.
+
+    Each file holds as field data the swept ``value`` (also under the parameter's name),
+    ``series`` and ``point`` (numbers from 1), ``converged`` (1 or 0) and the series label
+    as the name of an array ``"series: LABEL"`` holding the series number (VTK string
+    arrays would make the files unreadable to meshio). For :func:`webfem.sweeps.run`'s ``vtu`` argument: ``missing`` tells which
+    points need files (a resumed sweep solves those again), ``write`` writes one point,
+    ``close`` the collections (once; later calls return the same paths).
+
+    Raises InputError at creation if ``folder`` cannot be written, before anything is solved.
+    """
+
+    def __init__(self, folder, stem: str, parameter: str):
+        self.folder, self.stem, self.parameter = Path(folder), stem, parameter
+        if self.folder.exists() and not self.folder.is_dir():
+            raise InputError(f"VTU folder {self.folder} is a file; it must be a folder")
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+        except (FileExistsError, NotADirectoryError):
+            raise InputError(f"cannot create the VTU folder {self.folder}: a file is in the "
+                             "way") from None
+        except PermissionError:
+            raise InputError(f"cannot create the VTU folder {self.folder}: permission denied") \
+                from None
+        if not os.access(self.folder, os.W_OK | os.X_OK):
+            raise InputError(f"cannot write in the VTU folder {self.folder}: permission denied")
+        remove_stale_temps(self.folder, stem)
+        # (series, part) -> point -> (value, path, label)
+        self._entries: dict[tuple[int, str], dict[int, tuple]] = {}
+        self._closed: list[Path] | None = None
+
+    def path(self, series: int, point: int, part: str = "web", converged: bool = True
+             ) -> Path:
+        """The file of one point (indices from 0 as :func:`~webfem.sweeps.run` passes them;
+        the names count from 1)."""
+        flag = "" if converged else "_NOT_CONVERGED"
+        return self.folder / f"{self._stem(series, point)}{flag}_{part}.vtu"
+
+    def _stem(self, series: int, point: int) -> str:
+        return f"{self.stem}_s{series + 1:02d}_p{point + 1:03d}"
+
+    def missing(self, series_index: int, point_index: int) -> bool:
+        """True unless this point's converged files are there (and readable)."""
+        web = self.path(series_index, point_index, "web")
+        try:
+            data = read_field_data(web)
+            value = data["value"]
+            label = next(k[len(_LABEL):] for k in data if k.startswith(_LABEL))
+        except (OSError, KeyError, ValueError, TypeError, StopIteration,
+                ElementTree.ParseError):
+            return True
+        film = self.path(series_index, point_index, "film")
+        for part, path in (("web", web), ("film", film)):
+            if path.exists():
+                self._entries.setdefault((series_index, part), {})[point_index] = (
+                    value, path, label)
+        return False
+
+    def write(self, series_index: int, point_index: int, label: str, value: float, result
+              ) -> list[Path]:
+        """Write one point's files; returns their paths."""
+        data = {"value": float(value), self.parameter: float(value),
+                "series": series_index + 1, _LABEL + str(label): series_index + 1,
+                "point": point_index + 1, "converged": float(bool(result["converged"]))}
+        paths = write_result(result, self.folder, self._stem(series_index, point_index), data)
+        for part in ("web", "film"):   # the other outcome's files of this point are stale
+            self.path(series_index, point_index, part,
+                      not result["converged"]).unlink(missing_ok=True)
+        for path in paths:
+            part = "film" if path.stem.endswith("_film") else "web"
+            self._entries.setdefault((series_index, part), {})[point_index] = (
+                float(value), path, str(label))
+        return paths
+
+    def close(self) -> list[Path]:
+        """Write one ``.pvd`` per series and part; returns their paths."""
+        if self._closed is None:
+            self._closed = []
+            for (series, part), points in sorted(self._entries.items()):
+                entries = [points[p] for p in sorted(points)]
+                label = entries[0][2]
+                tag = _tag(label)
+                name = f"{self.stem}_s{series + 1:02d}{'_' + tag if tag else ''}_{part}.pvd"
+                self._closed.append(write_pvd(
+                    entries, self.folder / name,
+                    comment=f"webfem sweep {self.stem}: series {series + 1} ({label}), "
+                            f"time = {self.parameter}"))
+        return list(self._closed)

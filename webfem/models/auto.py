@@ -23,15 +23,19 @@ The estimate is for ``quantity`` ("mu", "h_center" or "h_min"), relative, and mu
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
-from ..case import Case, CaseError
+from ..case import Case
 from ..physics import closed_form as cf
-from ..physics.friction import local_friction
+from ..physics.friction import friction_for
+from ..physics.validity import BETA_MAX
 from ..result import Result
 from . import closed, fe1d, fe2d
+from .options import AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, fe_options
 
-__all__ = ["solve", "NAME"]
+__all__ = ["solve", "solve_case", "NAME"]
 
 NAME = "auto"
 #: Relative edge-leakage loss of the central and minimum gaps, times lambda (tests/test_fe2d.py).
@@ -47,13 +51,8 @@ SAFETY = 2.0
 QUANTITIES = ("mu", "h_center", "h_min")
 
 
-def _friction(case: Case, h, w):
-    loc = local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
-                         eta=case.air.viscosity, E_b=case.web.modulus_thickness,
-                         sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                         C=case.friction.speed_constant, variant=case.friction.variant,
-                         distribution=case.friction.distribution)
-    return float(np.sum(loc["mu"] * w))
+def _friction(case: Case, h, w, resting=False):
+    return float(np.sum(friction_for(case, h, resting)["mu"] * w))
 
 
 def _closed_estimate(case: Case, r: Result, quantity: str):
@@ -86,38 +85,54 @@ def _fe1d_estimate(case: Case, r: Result, quantity: str):
     lam = case.lam
     if quantity == "mu":
         h, w = r.diagnostics["wrap_h"], r.diagnostics["wrap_w"]
-        est = abs(_friction(case, h * (1.0 - LEAK_CENTER / lam), w) / r["mu"] - 1.0)
+        est = abs(_friction(case, h * (1.0 - LEAK_CENTER / lam), w, resting=True) / r["mu"]
+                  - 1.0)
     else:
         est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam
     est *= SAFETY
     return est, f"fe1d: estimated {quantity} error {est:.2g} (edge leakage ~1.5/lambda left out)"
 
 
-def solve(case: Case, *, quantity: str = "mu", tol: float = 0.01, initial=None,
-          raise_on_failure: bool = True, **options) -> Result:
-    """Solve with the cheapest model whose estimated relative error in ``quantity`` is within
-    ``tol``. ``options`` go to the FE model that is used; ``initial`` is accepted for sweeps
-    and not used (each point picks its model afresh)."""
-    if quantity not in QUANTITIES:
-        raise CaseError(f"quantity = {quantity!r} is not valid: must be one of "
-                        + ", ".join(repr(q) for q in QUANTITIES))
-    if not 0.0 < tol < 1.0:
-        raise CaseError(f"tol = {tol!r} is out of range: must be in (0, 1)")
+def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = None,
+               raise_on_failure: bool = True) -> Result:
+    """Solve with the cheapest model whose estimated relative error in ``options.quantity``
+    is within ``options.tol``. The FE options go to the FE model that is used; ``initial``
+    is accepted for sweeps and not used (each point picks its model afresh)."""
+    quantity, tol = options.quantity, options.tol
     why = []
-    r = closed.solve(case)
+    r = closed.solve_case(case, ClosedFormOptions())
+    if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
+        return _answer(r, None, quantity, tol,
+                       [f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), "
+                        "beyond the FE models; the air film is negligible: closed form"])
     est, text = _closed_estimate(case, r, quantity)
     why.append(text)
     if est is None or est > tol:
-        r1 = fe1d.solve(case, raise_on_failure=raise_on_failure,
-                        **{k: v for k, v in options.items() if k in fe1d.DEFAULTS})
-        est, text = _fe1d_estimate(case, r1, quantity)
+        r = fe1d.solve_case(case, fe_options(options, FE1DOptions),
+                            raise_on_failure=raise_on_failure)
+        est, text = _fe1d_estimate(case, r, quantity)
         why.append(text)
-        r = r1
         if est > tol:
-            r = fe2d.solve(case, raise_on_failure=raise_on_failure, **options)
+            r = fe2d.solve_case(case, fe_options(options, FE2DOptions),
+                                raise_on_failure=raise_on_failure)
             est = FE2D_ERROR
             why.append(f"fe2d: the reference; mesh error about {FE2D_ERROR:g}")
+    return _answer(r, est, quantity, tol, why)
+
+
+def _answer(r: Result, est, quantity, tol, why) -> Result:
+    """The chosen model's result, saying which model answered and why."""
     used = r["model"]
-    r.summary.update(model=NAME, model_used=used, estimated_error=est, quantity=quantity,
-                     tolerance=tol, why="; ".join(why) + f" -> {used}")
-    return r
+    summary = r.summary.replace(model=NAME, model_used=used, estimated_error=est,
+                                quantity=quantity, tolerance=tol,
+                                why="; ".join(why) + f" -> {used}")
+    return dataclasses.replace(r, summary=summary)
+
+
+def solve(case: Case, options: AutoOptions | None = None, *, initial=None,
+          raise_on_failure: bool = True, **values) -> Result:
+    """:func:`solve_case` with the options as keywords (``quantity``, ``tol``, and any FE
+    option for the model used)."""
+    options = options.replace(**values) if options is not None else \
+        AutoOptions.from_mapping(values)
+    return solve_case(case, options, initial=initial, raise_on_failure=raise_on_failure)

@@ -18,13 +18,16 @@ import time
 
 import numpy as np
 
-from ..case import Case, CaseError
+from ..case import Case
 from ..physics import closed_form as cf
 from ..physics.contact import REGIMES, contact_gap
-from ..physics.friction import delta_T_from_mu, local_friction, wrap_average_linear_gap
-from ..result import Result
+from ..physics.friction import delta_T_from_mu, friction_for, wrap_average_linear_gap
+from ..errors import InputError
+from ..physics.validity import contact_overload, slip_warning, thin_film_check
+from ..result import Diagnostics, Fields, Result, Summary
+from .options import ClosedFormOptions
 
-__all__ = ["evaluate", "case_arrays", "solve", "solve_many", "NAME"]
+__all__ = ["evaluate", "case_arrays", "solve", "solve_case", "solve_many", "NAME"]
 
 NAME = "closed-form"
 #: Points along the wrap in the fields of a single solve (for charts and VTU).
@@ -87,41 +90,56 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     if summary["h_outlet"] <= 0.0:
         out.append("Eq. 21 gap reaches 0 in the wrap: the web lands on the roller there "
                    "(clamped h <= 0 -> 0)")
+    slip = slip_warning(case, summary["h_min"])
+    if slip:
+        out.append(slip)
     return out
 
 
-def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> dict:
-    """Summary dict (the JSON keys) of point ``i`` of :func:`evaluate`'s output."""
+def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Summary:
+    """The :class:`~webfem.result.Summary` of point ``i`` of :func:`evaluate`'s output."""
     s = {key: (np.asarray(v)[i] if np.ndim(v) else v) for key, v in values.items()}
     s = {k: (v.item() if hasattr(v, "item") else v) for k, v in s.items()}
-    s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=True,
+    # a landed web whose contact cannot carry T/R has no finite mu: not an answer
+    finite = bool(np.isfinite(s["mu"]))
+    s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=finite,
              iterations=0, n_dofs=0, residual=0.0, solve_time_s=elapsed,
              sigma=case.sigma, U=case.U, U_slide=case.U_slide)
     s["warnings"] = _warnings(case, s)
-    return s
+    if not finite:
+        s["solver_message"] = ("no finite mu: the Eq. 21 gap lands the web and "
+                               + (contact_overload(case) or "the contact law fails"))
+    return Summary.from_mapping(s)
 
 
-def solve(case: Case, n_points: int = N_FIELD_POINTS, **options) -> Result:
-    """Closed-form solution of one case, with fields along the wrap for charts and VTU.
-
-    Takes no solver options; any given (e.g. ``level``) is an error naming them."""
-    if options:
-        raise CaseError(f"the closed-form model takes no options, got {sorted(options)}")
+def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None = None
+               ) -> Result:
+    """Closed-form solution of one case, with fields along the wrap for charts and VTU
+    (``options.n_points`` points). ``initial`` is accepted for the registry's common
+    signature and not used: the closed form needs no start."""
+    thin_film_check(case)
     t0 = time.perf_counter()
     values = evaluate(**case_arrays([case]), variant=case.friction.variant,
                       distribution=case.friction.distribution)
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
+    if not summary.converged:
+        raise InputError(f"no admissible closed-form answer: {summary.solver_message}")
     R, B = case.roller.radius, case.B
-    x = np.linspace(-R * B / 2, R * B / 2, n_points)
+    x = np.linspace(-R * B / 2, R * B / 2, options.n_points)
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
-    local = local_friction(h, R=R, T=case.web.tension, U_s=case.U_slide, eta=case.air.viscosity,
-                           E_b=case.web.modulus_thickness, sigma=case.sigma,
-                           t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                           C=case.friction.speed_constant, variant=case.friction.variant,
-                           distribution=case.friction.distribution)
-    fields = {"x": x, "h": h, **local}
-    return Result(case, summary, fields, {"method": "Eq. 21 + Eqs. 10-13, 28-31, exact average"})
+    fields = Fields(x=x, h=h, **friction_for(case, h))
+    return Result(case, summary, fields,
+                  Diagnostics(method="Eq. 21 + Eqs. 10-13, 28-31, exact average",
+                              options=options))
+
+
+def solve(case: Case, options: ClosedFormOptions | None = None, **values) -> Result:
+    """Closed-form solution of one case (see :func:`solve_case`); options as keywords
+    (``n_points``); any other name is an error naming it."""
+    options = options.replace(**values) if options is not None else \
+        ClosedFormOptions.from_mapping(values)
+    return solve_case(case, options)
 
 
 def solve_many(cases) -> list[Result]:
@@ -137,5 +155,9 @@ def solve_many(cases) -> list[Result]:
                           distribution=distribution)
         elapsed = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
-            out[i] = Result(cases[i], summary_from_arrays(values, j, cases[i], elapsed))
+            # summaries only: the fields are the wrap endpoints of the linear Eq. 21 gap
+            s = summary_from_arrays(values, j, cases[i], elapsed)
+            half = cases[i].roller.radius * cases[i].B / 2
+            out[i] = Result(cases[i], s, Fields(x=np.array([-half, half]),
+                                                h=np.array([s.h_inlet, s.h_outlet])))
     return out  # type: ignore[return-value]

@@ -23,36 +23,32 @@ Examples
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
 
-from ..case import Case, CaseError
-from ..errors import ConvergenceError
+from ..case import Case
+from ..errors import InputError
 from ..fem import forms
 from ..fem.film2d import film_coefficients, film_jacobian, film_residual
 from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard
+from ..fem.scaling import FoilParameters
 from ..fem.transfer import film_mesh, quadrature_matrices, width_nodes
 from ..fem.web import web_coefficients, web_jacobian, web_residual
-from ..result import Result
+from ..physics.friction import friction_for
+from ..result import Film, Result
 from . import fe1d
-from .fe1d import FoilParameters
+from .driver import Start, solve_fe
+from .options import FE2DOptions
 
-__all__ = ["FoilBearing2D", "solve", "NAME", "DEFAULTS"]
+__all__ = ["FoilBearing2D", "FILM", "solve", "solve_case", "NAME"]
 
 NAME = "fe2d"
-METHODS = ("newton", "picard")
-
-#: Default discretisation and solver settings (see :func:`solve`).
-DEFAULTS = dict(entry=40.0, level=0, order=2, width_fine=0.25, symmetry=True,
-                compressible=True, contact=True, method="newton", tol=1e-9, max_iter=40,
-                omega=1.0, aitken=True, anderson=10, picard_max_iter=500, floor=0.1, adapt=6,
-                adapt_ratio=1.0, min_cell=2e-3, nodes=None, backtrack=1.5)
+#: The defaults of :class:`~webfem.models.options.FE2DOptions`, by name (read-only view).
+DEFAULTS = FE2DOptions().to_dict()
 
 
 class FoilBearing2D:
@@ -63,7 +59,7 @@ class FoilBearing2D:
 
     def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2):
         if order not in (1, 2):
-            raise CaseError(f"order = {order!r} is not valid: must be 1 or 2")
+            raise InputError(f"order = {order!r} is not valid: must be 1 or 2")
         self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
         self.width = float(self.Z[-1] - self.Z[0])
         self.order = order
@@ -84,6 +80,8 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass = None
+        #: the 1-D problem and state this problem started from (width continuation)
+        self.line_start = None
 
     @property
     def n_dofs(self) -> int:
@@ -194,27 +192,29 @@ class FoilBearing2D:
         out = self._newton(u, prm, tol, 10, rows=rows)
         return out.u if out.converged else u
 
-    def solve_newton(self, u0, prm, tol=1e-9, max_iter=40):
+    def solve_newton(self, u0, prm, options: FE2DOptions | None = None):
+        """Newton on film + web; on failure, when the problem knows the 1-D state it started
+        from (``line_start``), continuation in the web width (:func:`_width_continuation`)."""
+        options = options or FE2DOptions()
+        u, info = self._plain_newton(u0, prm, options.tol, options.max_iter)
+        if not info["converged"] and self.line_start is not None:
+            p1, u1 = self.line_start
+            u, info = _width_continuation(self, p1, u1, prm, options, info)
+        return u, info
+
+    def _plain_newton(self, u0, prm, tol, max_iter):
         out = self._newton(self.consistent_pressure(u0, prm), prm, tol, max_iter)
         return out.u, dict(converged=out.converged, iterations=out.iterations,
                            residual=out.residual, history=list(out.history), reason=out.reason,
                            steps=[1.0])
 
-    def solve_picard(self, u0, prm, tol=1e-9, omega=1.0, aitken=True, max_iter=500,
-                     backtrack=1.5, anderson=10):
+    def solve_picard(self, u0, prm, options: FE2DOptions | None = None):
         """Picard with the film's coefficients frozen (see :meth:`fe1d.FoilBearing1D.
         solve_picard`); stops on the coupled residual norm, like Newton."""
-        return frozen_coefficient_picard(self, u0, prm, tol, omega, aitken, max_iter,
-                                         backtrack, anderson)
-
-
-def _run(problem, u0, prm, opts):
-    if opts["method"] == "newton":
-        return problem.solve_newton(u0, prm, tol=opts["tol"], max_iter=opts["max_iter"])
-    return problem.solve_picard(u0, prm, tol=opts["tol"], omega=opts["omega"],
-                                aitken=opts["aitken"], max_iter=opts["picard_max_iter"],
-                                anderson=int(opts["anderson"]),
-                                backtrack=opts["backtrack"] or None)
+        options = options or FE2DOptions()
+        o = options
+        return frozen_coefficient_picard(self, u0, prm, o.tol, o.omega, o.aitken,
+                                         o.picard_max_iter, o.backtrack or None, o.anderson)
 
 
 def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict):
@@ -232,7 +232,7 @@ def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict)
     f_prev, f = None, 16.0
     u = at(f).start_from_line(p1, u1, prm)
     while True:
-        v, info = at(f).solve_newton(u, prm, tol=opts["tol"], max_iter=opts["max_iter"])
+        v, info = at(f)._plain_newton(u, prm, opts.tol, opts.max_iter)
         its += info["iterations"]
         hist += info["history"]
         if info["converged"]:
@@ -264,85 +264,80 @@ def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarra
     return v
 
 
-def solve(case: Case, *, initial: Result | None = None, raise_on_failure: bool = True,
-          **options) -> Result:
-    """Solve one case with the 2-D film and the 1-D web.
-
-    Options (defaults in :data:`DEFAULTS`): as :func:`webfem.models.fe1d.solve` plus
-    ``width_fine`` (cell size at the web edges, scaled units; ``level`` bisects) and
-    ``symmetry`` (True: half width with dP/dZ = 0 at the centreline; False: full width).
-    ``initial``: a previous fe2d result; its 1-D part starts this point's 1-D solve
-    (continuation in a sweep). The 2-D solve always starts from the 1-D solution.
-    """
-    opts = fe1d.checked_options(NAME, options, DEFAULTS, METHODS)
-    if not opts["width_fine"] > 0:
-        raise CaseError(f"width_fine = {opts['width_fine']!r} is out of range: must be > 0")
-    t0 = time.perf_counter()
-    prm = FoilParameters.from_case(case, opts["compressible"], opts["contact"], opts["floor"])
-    level = int(opts["level"])
-    Z = width_nodes(case.lam, level, half=bool(opts["symmetry"]), fine=opts["width_fine"])
-
-    # the infinitely wide solution: start and X mesh (already refined where the film is thin)
-    line_start = initial.diagnostics.get("line_result") if initial is not None else None
-    one = fe1d.solve(case, initial=line_start,
-                     **{k: opts[k] for k in ("entry", "level", "compressible", "contact",
-                                             "floor", "adapt", "adapt_ratio", "min_cell",
-                                             "nodes")},
-                     raise_on_failure=False)
-    p1, u1 = one.diagnostics["problem"], one.diagnostics["state"]
-    problem = FoilBearing2D(p1.X, Z, order=opts["order"])
-    # start from the infinitely wide solution (a sweep continues through the 1-D part)
-    u0 = problem.start_from_line(p1, u1, prm)
-    u, info = _run(problem, u0, prm, opts)
-    if not info["converged"] and opts["method"] == "newton":
-        u, info = _width_continuation(problem, p1, u1, prm, opts, info)
-    info["iterations"] += one["iterations"]
-    rounds = 0
-    while info["converged"] and rounds < opts["adapt"]:
-        Xn = fe1d._adapted_nodes(problem, u, prm, opts["adapt_ratio"], opts["min_cell"])
-        if Xn is None:
-            break
-        rounds += 1
-        finer = FoilBearing2D(Xn, Z, order=opts["order"])
-        u, info_f = _run(finer, _transfer2d(problem, u, prm, finer), prm, opts)
-        info_f["iterations"] += info["iterations"]
-        info_f["history"] = info["history"] + info_f["history"]
-        problem, info = finer, info_f
-    info["adapt_rounds"] = rounds
-    elapsed = time.perf_counter() - t0
-    mesh_text = (f"{'half' if opts['symmetry'] else 'full'} width, {len(problem.X) - 1} x "
-                 f"{len(Z) - 1} Q{opts['order']} cells, entry/exit {opts['entry']:g} "
-                 f"R eps^(1/3), level {level}; web: Hermite line")
-    summary, diagnostics = fe1d._summary(case, problem, u, prm, info, elapsed, opts,
-                                         model=NAME, mesh=mesh_text)
-    summary["n_cells"] = int(problem.mesh.nelements)
-    summary["width_cells"] = len(Z) - 1
-    if case.beta < 6.0:
-        summary["warnings"].append(f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
-                                   "entry and exit zones; no uniform central gap exists")
-    fields = fe1d._node_fields(case, problem, u, prm)
-    diagnostics.update(state=u, problem=problem, line_result=one)
-    result = Result(case, summary, fields, diagnostics)
-    result.film = _film_fields(case, problem, u, prm)
-    if not info["converged"] and raise_on_failure:
-        raise ConvergenceError(f"fe2d ({opts['method']}) did not converge: {info['reason']} "
-                               f"after {info['iterations']} iterations, residual "
-                               f"{info['residual']:.3e}", result, info.get("history"))
-    return result
-
-
-def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> dict:
+def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> Film:
     """Film fields at the 2-D mesh vertices, physical units (for VTU and pictures)."""
     pts = problem.mesh.p
     Hs = case.h_scale
     H = problem.gap(u, prm, pts[0])
     h = H * Hs
     p_rel = problem.film_pressure_at_vertices(u) * case.p_bar
-    loc = fe1d._local(case, h)
-    return {
-        "points": np.vstack([pts * case.x_scale, np.zeros(pts.shape[1])]).T,
-        "quads": problem.mesh.t.T.copy(),
-        "p": p_rel + case.air.ambient_pressure, "p_rel": p_rel, "h": h,
-        "p_contact": forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
-        "chi_c": loc["chi_c"], "mu": loc["mu"], "regime": loc["regime"].astype(float),
-    }
+    loc = friction_for(case, h, resting=True)
+    return Film(
+        points=np.vstack([pts * case.x_scale, np.zeros(pts.shape[1])]).T,
+        quads=problem.mesh.t.T.copy(),
+        p=p_rel + case.air.ambient_pressure, p_rel=p_rel, h=h,
+        p_contact=forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
+        chi_c=loc["chi_c"], mu=loc["mu"], regime=loc["regime"].astype(float))
+
+
+class _Film:
+    """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
+    the start and the X mesh, already refined where the film is thin."""
+
+    name = NAME
+
+    def start(self, case: Case, prm: FoilParameters, options: FE2DOptions, initial) -> Start:
+        line_start = initial.state("line_result") if initial is not None else None
+        one = fe1d.solve_case(case, FE2DOptions.line_options(options), initial=line_start,
+                              raise_on_failure=False)
+        p1, u1 = one.state("problem"), one.state("state")
+        Z = width_nodes(case.lam, options.level, half=options.symmetry,
+                        fine=options.width_fine)
+        problem = FoilBearing2D(p1.X, Z, order=options.order)
+        problem.line_start = (p1, u1)
+        return Start(problem, problem.start_from_line(p1, u1, prm),
+                     iterations=one["iterations"], solver={"line_result": one})
+
+    def refined(self, problem, u, prm, X, options):
+        finer = FoilBearing2D(X, problem.Z, order=options.order)
+        return finer, _transfer2d(problem, u, prm, finer)
+
+    def mesh_text(self, problem, options) -> str:
+        return (f"{'half' if options.symmetry else 'full'} width, {len(problem.X) - 1} x "
+                f"{len(problem.Z) - 1} Q{options.order} cells; x: "
+                f"{fe1d.line_mesh_text(problem.X, options)}; web: Hermite line")
+
+    def summary_extra(self, case: Case, problem, options) -> dict:
+        extra = {"n_cells": int(problem.mesh.nelements), "width_cells": len(problem.Z) - 1}
+        if case.beta < 6.0:
+            extra["warnings"] = [f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
+                                 "entry and exit zones; no uniform central gap exists"]
+        return extra
+
+    def film(self, case, problem, u, prm) -> Film:
+        return _film_fields(case, problem, u, prm)
+
+
+#: The 2-D model as the driver sees it.
+FILM = _Film()
+
+
+def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = None,
+               raise_on_failure: bool = True) -> Result:
+    """The registry's entry: :func:`solve` with a ready options object."""
+    return solve_fe(FILM, case, options, initial, raise_on_failure)
+
+
+def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,
+          raise_on_failure: bool = True, **values) -> Result:
+    """Solve one case with the 2-D film and the 1-D web.
+
+    ``options`` (or keywords, see :class:`~webfem.models.options.FE2DOptions`): those of
+    the 1-D model plus ``width_fine`` (cell size at the web edges, scaled units; ``level``
+    bisects) and ``symmetry`` (True: half width with dP/dZ = 0 at the centreline; False:
+    full width). ``initial``: a previous fe2d result; its 1-D part starts this point's 1-D
+    solve (continuation in a sweep). The 2-D solve always starts from the 1-D solution.
+    """
+    options = options.replace(**values) if options is not None else \
+        FE2DOptions.from_mapping(values)
+    return solve_case(case, options, initial=initial, raise_on_failure=raise_on_failure)

@@ -81,19 +81,35 @@ def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
     return h
 
 
-def load_ratio(h, p_bar, E_b, sigma, t, variant="paper", distribution="exponential"):
+#: A web rests on its asperities where contact carries at least this share of the wrap
+#: pressure T/R. The FE models hold a landed web at the gap where contact and film together
+#: carry T/R, i.e. within round-off of h_c; judging "h < h_c" there would let round-off pick
+#: the regime (and the paper's jump in Eq. 29). 0.999 moves the edge by sigma ln(1/0.999) =
+#: 0.001 sigma (4 nm for newsprint) above h_c.
+RESTING_SHARE = 0.999
+
+
+def resting_gap(p_bar, E_b, sigma, t, distribution="exponential", share=RESTING_SHARE):
+    """The gap below which contact carries at least ``share`` of p_bar: the edge of the
+    boundary regime for a web resting on its asperities (``share = 1`` gives h_c)."""
+    return contact_gap(share * np.asarray(p_bar, float), E_b, sigma, t, distribution)
+
+
+def load_ratio(h, p_bar, E_b, sigma, t, variant="paper", distribution="exponential",
+               h_edge=None):
     """Share chi_c of the wrap load carried by asperity contact (Eq. 13); chi_f = 1 - chi_c.
 
     ``variant="paper"``: 1 below h_c, p_c/p_bar up to 3 sigma, 0 above (jumps at 3 sigma).
     ``variant="continuous"``: min(1, p_c/p_bar) for every h (no cut at 3 sigma).
-    A landed web (h <= 0) is in full contact in both.
+    A landed web (h <= 0) is in full contact in both. ``h_edge`` replaces h_c as the edge
+    of full contact (see :func:`resting_gap`).
     """
     h = np.asarray(h, dtype=float)
     ratio = np.minimum(contact_pressure(h, E_b, sigma, t, distribution) / p_bar, 1.0)
     if variant == "continuous":
         chi = ratio
     elif variant == "paper":
-        h_c = contact_gap(p_bar, E_b, sigma, t, distribution)
+        h_c = contact_gap(p_bar, E_b, sigma, t, distribution) if h_edge is None else h_edge
         chi = np.where(h < h_c, 1.0, np.where(h <= 3.0 * sigma, ratio, 0.0))
     else:
         raise ValueError(f"variant = {variant!r} is not valid: must be 'paper' or 'continuous'")

@@ -20,9 +20,9 @@ import math
 import numpy as np
 from scipy.special import exp1
 
-from .contact import contact_gap, load_ratio, regime_code
+from .contact import contact_gap, load_ratio, regime_code, resting_gap
 
-__all__ = ["mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
+__all__ = ["friction_for", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
            "wrap_average_numeric",
            "delta_T_from_mu", "mu_from_delta_T"]
 
@@ -52,23 +52,36 @@ def mu_film(h, eta, R, U_s, T):
 
 
 def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper",
-                   distribution="exponential"):
+                   distribution="exponential", resting=False):
     """Local load shares and friction at gaps ``h`` [m].
 
     Returns a dict of arrays: ``chi_c``, ``mu_c``, ``mu_f``, ``mu`` and ``regime`` (codes of
     :data:`webfem.physics.contact.REGIMES`). Where chi_f = 0 the film term is dropped, so a
-    landed web (h <= 0) has mu = mu_c.
+    landed web (h <= 0) has mu = mu_c. ``resting=True`` puts the edge of the boundary regime
+    where contact carries :data:`~webfem.physics.contact.RESTING_SHARE` of T/R instead of
+    exactly at h_c (for solved gaps, where a landed web sits at h_c within round-off).
     """
     h = np.asarray(h, dtype=float)
     p_bar = T / R
-    h_c = contact_gap(p_bar, E_b, sigma, t, distribution)
-    chi_c = load_ratio(h, p_bar, E_b, sigma, t, variant, distribution)
+    h_c = (resting_gap(p_bar, E_b, sigma, t, distribution) if resting
+           else contact_gap(p_bar, E_b, sigma, t, distribution))
+    chi_c = load_ratio(h, p_bar, E_b, sigma, t, variant, distribution, h_edge=h_c)
     mu_c = mu_asperity(h, h_c, U_s, mu_cc, C, variant)
     mu_f = mu_film(h, eta, R, U_s, T)
     chi_f = 1.0 - chi_c
     film = np.where(chi_f > 0.0, mu_f, 0.0) * chi_f   # chi_f = 0 where mu_f is infinite
     return {"chi_c": chi_c, "mu_c": mu_c, "mu_f": mu_f, "mu": mu_c * chi_c + film,
             "regime": regime_code(h, h_c, sigma)}
+
+
+def friction_for(case, h, resting: bool = False) -> dict:
+    """:func:`local_friction` at gaps ``h`` [m] with every constant taken from ``case`` (a
+    :class:`webfem.case.Case`); ``resting`` as there."""
+    return local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
+                          eta=case.air.viscosity, E_b=case.web.modulus_thickness,
+                          sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
+                          C=case.friction.speed_constant, variant=case.friction.variant,
+                          distribution=case.friction.distribution, resting=resting)
 
 
 _EULER_GAMMA = 0.5772156649015329

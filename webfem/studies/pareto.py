@@ -4,25 +4,64 @@ Methods: the closed form; the 1-D FE model at several mesh levels (Newton, and P
 default mesh); the 2-D FE model at several levels and both element orders (Newton, and
 Picard at the default mesh). Time: median of ``repeats`` warm solves. Error: relative to the
 finest 2-D solution (Q2, two levels above the default), in the central gap, the minimum gap
-and the wrap-averaged mu. The chart (log-log, time against the mu error) marks the Pareto
-front: the methods no other method beats in both time and error.
+and the wrap-averaged mu. The Pareto front: the methods no other method beats in both time
+and the mu error.
 
-Writes ``pareto.csv``, ``pareto.png`` and ``pareto.md``.
+Computes only; :func:`webfem.io.studies.write` writes the CSV, chart and markdown.
 """
 
 from __future__ import annotations
 
-import csv
 import statistics
 import time
-from pathlib import Path
+from dataclasses import dataclass
+from typing import Callable, ClassVar
 
-from .. import Case, solve
+from ..api import solve
+from ..case import Case
+
+__all__ = ["QUANTITIES", "ParetoStudy", "methods", "pareto_front", "run"]
 
 QUANTITIES = ("h_center", "h_min", "mu")
 
 
-def methods(quick: bool = False):
+@dataclass(frozen=True)
+class ParetoStudy:
+    """What the speed-against-accuracy study found.
+
+    Attributes
+    ----------
+    case : Case
+        The case solved.
+    rows : tuple of dict
+        Per method: ``method``, ``model``, ``time_s`` (median), ``iterations``, ``n_dofs``,
+        ``error_h_center``, ``error_h_min``, ``error_mu`` (relative to the reference) and
+        ``pareto_mu`` (on the front of time against the mu error).
+    reference_level : int
+        Mesh level of the fe2d Q2 reference.
+    reference_dofs : int
+        Its number of unknowns.
+    repeats : int
+        Solves per method (the time is their median).
+    quick : bool
+        The reduced study.
+    """
+
+    kind: ClassVar[str] = "pareto"
+    case: Case
+    rows: tuple
+    reference_level: int
+    reference_dofs: int
+    repeats: int
+    quick: bool = False
+
+    def row(self, method: str) -> dict:
+        """The row of the named method, e.g. ``"closed form"``."""
+        return next(r for r in self.rows if r["method"] == method)
+
+
+def methods(quick: bool = False) -> list[tuple[str, str, dict]]:
+    """``(name, model, options)`` of every method timed."""
     lv1 = (0, 1) if quick else (0, 1, 2)
     out = [("closed form", "closed-form", {})]
     out += [(f"fe1d P2 level {lv}", "fe1d", {"level": lv}) for lv in lv1]
@@ -36,8 +75,14 @@ def methods(quick: bool = False):
     return out
 
 
-def pareto_front(points):
-    """Indices of the points no other point beats in both coordinates (lower is better)."""
+def pareto_front(points) -> list[int]:
+    """Indices of the points no other point beats in both coordinates (lower is better).
+
+    Examples
+    --------
+    >>> pareto_front([(1.0, 1.0), (2.0, 0.5), (3.0, 0.6), (0.5, 2.0)])
+    [0, 1, 3]
+    """
     front = []
     for i, (t, e) in enumerate(points):
         if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e)
@@ -46,12 +91,14 @@ def pareto_front(points):
     return front
 
 
-def run(case: Case, out, quick: bool = False, repeats: int = 3, progress=print) -> dict:
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    ref = solve(case, model="fe2d", level=1 if quick else 2)
+def run(case: Case, quick: bool = False, repeats: int = 3,
+        progress: Callable[[str], None] | None = None) -> ParetoStudy:
+    """Time and compare every method of :func:`methods` (``quick``: fewer methods and a
+    reference one level coarser). ``progress`` receives one line of text per method."""
+    level = 1 if quick else 2
+    ref = solve(case, model="fe2d", level=level)
     if progress:
-        progress(f"reference fe2d Q2 level {1 if quick else 2}: {ref['n_dofs']} unknowns")
+        progress(f"reference fe2d Q2 level {level}: {ref['n_dofs']} unknowns")
     rows = []
     for name, model, opts in methods(quick):
         times, r = [], None
@@ -67,51 +114,5 @@ def run(case: Case, out, quick: bool = False, repeats: int = 3, progress=print) 
         if progress:
             progress(f"{name}: {row['time_s'] * 1e3:.1f} ms, mu error {row['error_mu']:.2e}")
     front = pareto_front([(r["time_s"], max(r["error_mu"], 1e-16)) for r in rows])
-    for i, r in enumerate(rows):
-        r["pareto_mu"] = i in front
-    with (out / "pareto.csv").open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    chart(rows, out / "pareto.png", case)
-    lines = [f"Reference: fe2d Q2 level {1 if quick else 2} ({ref['n_dofs']} unknowns); "
-             f"case U_r = {case.roller.speed:g} m/s, lambda = {case.lam:.3g}, "
-             f"beta = {case.beta:.3g}. Time: median of {repeats} solves.", "",
-             "| method | time [ms] | iterations | error h_center | error h_min | error mu | "
-             "Pareto (mu) |", "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['method']} | {r['time_s'] * 1e3:.2f} | {r['iterations']} | "
-                     f"{r['error_h_center']:.1e} | {r['error_h_min']:.1e} | "
-                     f"{r['error_mu']:.1e} | {'yes' if r['pareto_mu'] else ''} |")
-    text = "\n".join(lines) + "\n"
-    (out / "pareto.md").write_text(text)
-    return {"rows": rows, "reference": ref, "report": text}
-
-
-def chart(rows, path, case):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(8, 5.5), constrained_layout=True)
-    markers = {"closed-form": "s", "fe1d": "o", "fe2d": "^"}
-    for q, colour in (("mu", "C0"), ("h_center", "C1"), ("h_min", "C2")):
-        for r in rows:
-            ax.loglog(r["time_s"], max(r[f"error_{q}"], 1e-12), markers[r["model"]],
-                      color=colour, ms=7 if q == "mu" else 4,
-                      mfc=colour if (q == "mu" and r["pareto_mu"]) else "none")
-        ax.plot([], [], "o", color=colour, label=f"error in {q}")
-    front = sorted((r for r in rows if r["pareto_mu"]), key=lambda r: r["time_s"])
-    ax.loglog([r["time_s"] for r in front], [max(r["error_mu"], 1e-12) for r in front], "-",
-              color="C0", lw=1, label="Pareto front (mu), filled")
-    for r in rows:
-        ax.annotate(r["method"], (r["time_s"], max(r["error_mu"], 1e-12)), fontsize=6,
-                    xytext=(4, 2), textcoords="offset points")
-    ax.set_xlabel("time per solve [s] (median)")
-    ax.set_ylabel("relative error against the finest 2-D solution")
-    ax.set_title(f"speed against accuracy, U_r = {case.roller.speed:g} m/s "
-                 "(squares: closed form, circles: 1-D, triangles: 2-D)", fontsize=9)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    rows = [dict(r, pareto_mu=i in front) for i, r in enumerate(rows)]
+    return ParetoStudy(case, tuple(rows), level, int(ref["n_dofs"]), repeats, quick)

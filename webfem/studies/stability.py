@@ -9,20 +9,23 @@
 4. The closed form's stated range (beta > 6, lambda > 7) over speed x width x wrap.
 
 Each point: ``converged``, ``diverged`` or ``stalled``, with iterations and final residual.
-Writes ``stability.csv``, ``stability.png`` and ``stability.md``.
+Computes only; :func:`webfem.io.studies.write` writes the CSV, chart and markdown.
 """
 
 from __future__ import annotations
 
-import csv
 import time
 import warnings
-from pathlib import Path
+from dataclasses import dataclass
+from typing import Callable, ClassVar
 
 import numpy as np
 
-from .. import Case, solve
+from ..api import solve
+from ..case import Case
 from ..errors import ConvergenceError, ValidityWarning
+
+__all__ = ["SCHEMES", "STATUS", "StabilityStudy", "classify", "attempt", "run"]
 
 SCHEMES = (("Newton", {"method": "newton"}),
            ("Newton, no continuation", {"method": "newton", "continuation": False}),
@@ -37,7 +40,38 @@ SCHEMES = (("Newton", {"method": "newton"}),
 STATUS = ("converged", "stalled", "diverged")
 
 
+@dataclass(frozen=True)
+class StabilityStudy:
+    """Where each method converged, stalled or diverged.
+
+    Attributes
+    ----------
+    rows : tuple of dict
+        Per point: ``study`` (coupling, contact, 2-D, closed form), ``method``, ``model``,
+        ``speed``, ``wrap_deg``, ``width``, ``level``, ``status`` (one of :data:`STATUS`, or
+        "outside range" for the closed form), ``iterations``, ``residual``, ``message``,
+        ``time_s`` and, when a result came back, ``h_min``.
+    quick : bool
+        The reduced map.
+    """
+
+    kind: ClassVar[str] = "stability"
+    rows: tuple
+    quick: bool = False
+
+    def count(self, method: str, status: str | None = None) -> int:
+        """Points of ``method`` (with ``status``, when given)."""
+        return sum(r["method"] == method and (status is None or r["status"] == status)
+                   for r in self.rows)
+
+    def status(self, method: str, speed: float, study: str = "coupling") -> str:
+        """Status of the first point of ``method`` at ``speed`` in ``study``."""
+        return next(r["status"] for r in self.rows if r["method"] == method
+                    and r["speed"] == speed and r["study"] == study)
+
+
 def classify(result) -> str:
+    """converged, diverged or stalled, from the result's flag and solver message."""
     if result["converged"]:
         return "converged"
     msg = str(result.get("solver_message", "")).lower()
@@ -47,6 +81,7 @@ def classify(result) -> str:
 
 
 def attempt(case: Case, model: str, opts: dict) -> dict:
+    """Solve once and classify; a solver that raises counts as diverged."""
     t0 = time.perf_counter()
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", ValidityWarning)   # the map crosses ranges on purpose
@@ -64,9 +99,11 @@ def attempt(case: Case, model: str, opts: dict) -> dict:
             "h_min": r["h_min"]}
 
 
-def run(case: Case, out, quick: bool = False, progress=print) -> dict:
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+def run(case: Case, quick: bool = False,
+        progress: Callable[[str], None] | None = None) -> StabilityStudy:
+    """Map the methods over the case's neighbourhood (``quick``: 3 speeds, one wrap angle,
+    level 0, about a minute; else about ten). ``progress`` receives one line of text per
+    coupling scheme and one for the rest."""
     speeds = (2.0, 20.0, 40.0) if quick else (0.5, 2.0, 5.0, 10.0, 20.0, 30.0, 40.0)
     wraps = (60.0,) if quick else (20.0, 60.0, 120.0)
     levels = (0,) if quick else (0, 1, 2)
@@ -103,65 +140,13 @@ def run(case: Case, out, quick: bool = False, progress=print) -> dict:
         for wrap in (10.0, 20.0, 60.0, 120.0):
             for u in speeds:
                 c = case.updated({"roller.speed": u, "web.width": width, "wrap.angle_deg": wrap})
-                r = solve(c, model="closed-form")
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", ValidityWarning)   # the range is mapped
+                    r = solve(c, model="closed-form")
                 rows.append({"study": "closed form", "method": "Eq. 21", "model": "closed-form",
                              "speed": u, "wrap_deg": wrap, "width": width, "level": 0,
                              "status": "converged" if r["eq21_valid"] else "outside range",
                              "iterations": 0, "residual": 0.0,
                              "message": f"beta = {r['beta']:.3g}, lambda = {r['lambda']:.3g}",
                              "time_s": r["solve_time_s"], "h_min": r["h_min"]})
-    keys = sorted({k for r in rows for k in r}, key=lambda k: list(rows[0]).index(k)
-                  if k in rows[0] else 99)
-    with (out / "stability.csv").open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
-    chart(rows, out / "stability.png")
-    text = report(rows)
-    (out / "stability.md").write_text(text)
-    return {"rows": rows, "report": text}
-
-
-def chart(rows, path):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap
-
-    coupling = [r for r in rows if r["study"] == "coupling" and r["level"] == 0]
-    methods = list(dict.fromkeys(r["method"] for r in coupling))
-    speeds = sorted({r["speed"] for r in coupling})
-    wraps = sorted({r["wrap_deg"] for r in coupling})
-    code = {"converged": 0, "stalled": 1, "diverged": 2}
-    cmap = ListedColormap(["#4caf50", "#ffc107", "#e53935"])
-    fig, axes = plt.subplots(1, len(methods), figsize=(2.6 * len(methods), 3.2),
-                             constrained_layout=True, sharey=True)
-    for ax, m in zip(np.atleast_1d(axes), methods):
-        Z = np.full((len(wraps), len(speeds)), np.nan)
-        for r in coupling:
-            if r["method"] == m:
-                Z[wraps.index(r["wrap_deg"]), speeds.index(r["speed"])] = code[r["status"]]
-                ax.text(speeds.index(r["speed"]), wraps.index(r["wrap_deg"]),
-                        str(r["iterations"]), ha="center", va="center", fontsize=6)
-        ax.imshow(Z, cmap=cmap, vmin=0, vmax=2, origin="lower", aspect="auto")
-        ax.set_xticks(range(len(speeds)), [f"{s:g}" for s in speeds], fontsize=7)
-        ax.set_yticks(range(len(wraps)), [f"{w:g}" for w in wraps], fontsize=7)
-        ax.set_xlabel("U_r [m/s]", fontsize=8)
-        ax.set_title(m, fontsize=8)
-    np.atleast_1d(axes)[0].set_ylabel("wrap [deg]")
-    fig.suptitle("1-D coupling schemes at mesh level 0: green converged, amber stalled, red "
-                 "diverged (numbers: iterations)", fontsize=9)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def report(rows) -> str:
-    lines = ["| study | method | points | converged | stalled | diverged | other |",
-             "|---|---|---|---|---|---|---|"]
-    for (study, method) in dict.fromkeys((r["study"], r["method"]) for r in rows):
-        sel = [r for r in rows if r["study"] == study and r["method"] == method]
-        n = {s: sum(r["status"] == s for r in sel) for s in STATUS}
-        other = len(sel) - sum(n.values())
-        lines.append(f"| {study} | {method} | {len(sel)} | {n['converged']} | {n['stalled']} | "
-                     f"{n['diverged']} | {other} |")
-    return "\n".join(lines) + "\n"
+    return StabilityStudy(tuple(rows), quick)

@@ -1,79 +1,81 @@
-"""How much the friction model's options move mu for the base case.
+"""How much the friction model's options move mu for a case.
 
 The paper's Eqs. 13 and 29 jump at h = 3 sigma and h = h_c (``friction.variant = "paper"``);
 the continuous variant removes the jumps. The paper's exponential asperity heights (Eq. 2)
 against the Gaussian of Eq. 1 (``friction.distribution``). Four combinations, mu against
-roller speed, closed form and an FE model; a table of mu at a few speeds.
+roller speed, closed form and an FE model (each speed continued from the previous one).
 
-Run: ``python -m webfem.studies.variants --out docs/figures [--model fe2d] [--num 24]``.
+Run: ``webfem study variants cases/base.toml --out docs/figures [--model fe2d] [--num 24]``.
+Computes only; :func:`webfem.io.studies.write` writes the chart and markdown.
 """
 
 from __future__ import annotations
 
-import argparse
-from pathlib import Path
+import math
+from dataclasses import dataclass
+from typing import Callable, ClassVar
 
 import numpy as np
 
-from .. import Case, solve
+from ..api import solve_along
+from ..case import Case
 
+__all__ = ["COMBOS", "VariantsStudy", "run"]
+
+#: (friction.variant, friction.distribution) of each curve.
 COMBOS = (("paper", "exponential"), ("continuous", "exponential"), ("paper", "gaussian"),
           ("continuous", "gaussian"))
 
 
-def run(out: Path, model: str = "fe2d", num: int = 24):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+@dataclass(frozen=True)
+class VariantsStudy:
+    """mu against roller speed per friction option and model.
 
+    Attributes
+    ----------
+    model : str
+        The FE model beside the closed form.
+    speeds : tuple of float
+        Roller speeds [m/s] (geometric, 0.5 to 40).
+    mu : dict
+        ``(variant, distribution, model) -> tuple of mu`` per speed (NaN where the solve did
+        not converge), in the order of :data:`COMBOS`, closed form first.
+    failed : int
+        Points that did not converge.
+    quick : bool
+        The reduced study.
+    """
+
+    kind: ClassVar[str] = "variants"
+    model: str
+    speeds: tuple
+    mu: dict
+    failed: int = 0
+    quick: bool = False
+
+    def picks(self) -> list[int]:
+        """Indices of the speeds the table shows (about six, evenly spread)."""
+        step = max(len(self.speeds) // 6, 1)
+        return [i for i in range(len(self.speeds)) if i % step == 0]
+
+
+def run(case: Case, model: str = "fe2d", num: int | None = None, quick: bool = False,
+        progress: Callable[[str], None] | None = None) -> VariantsStudy:
+    """Solve the four friction options of :data:`COMBOS` over ``num`` roller speeds (default
+    24, or 6 with ``quick``) with the closed form and ``model``. ``progress`` receives one
+    line of text per curve."""
+    num = num if num is not None else (6 if quick else 24)
     speeds = np.geomspace(0.5, 40.0, num)
-    data = {}
+    data, failed = {}, 0
     for variant, dist in COMBOS:
-        base = Case().updated({"friction.variant": variant, "friction.distribution": dist})
+        base = case.updated({"friction.variant": variant, "friction.distribution": dist})
+        cases = [base.updated({"roller.speed": float(u)}) for u in speeds]
         for m in ("closed-form", model):
-            mu, prev = [], None
-            for u in speeds:
-                kw = {"initial": prev} if prev is not None and m != "closed-form" else {}
-                prev = solve(base.updated({"roller.speed": float(u)}), model=m, **kw)
-                mu.append(prev["mu"])
-            data[(variant, dist, m)] = np.array(mu)
-            print(f"{variant:10s} {dist:11s} {m:11s} done", flush=True)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), constrained_layout=True, sharey=True)
-    styles = {"exponential": "-", "gaussian": "--"}
-    colours = {"paper": "C0", "continuous": "C3"}
-    for ax, m in zip(axes, ("closed-form", model)):
-        for variant, dist in COMBOS:
-            ax.plot(speeds, data[(variant, dist, m)], styles[dist], color=colours[variant],
-                    label=f"{variant}, {dist}")
-        ax.set_xlabel("roller speed U_r [m/s]")
-        ax.set_title(f"base case, {m}", fontsize=10)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
-    axes[0].set_ylabel("mu [-]")
-    out.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out / "variants.png", dpi=110)
-    plt.close(fig)
-    pick = [i for i, u in enumerate(speeds) if i % max(num // 6, 1) == 0]
-    lines = ["| model | variant | heights | " + " | ".join(f"{speeds[i]:.1f} m/s"
-                                                        for i in pick) + " |",
-             "|---|---|---|" + "---|" * len(pick)]
-    for (variant, dist, m), mu in data.items():
-        lines.append(f"| {m} | {variant} | {dist} | "
-                     + " | ".join(f"{mu[i]:.4f}" for i in pick) + " |")
-    (out / "variants.md").write_text("mu of the base case for the friction model's options "
-                                     "(`python -m webfem.studies.variants`).\n\n"
-                                     + "\n".join(lines) + "\n")
-    return data
-
-
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--out", default="docs/figures")
-    p.add_argument("--model", default="fe2d")
-    p.add_argument("--num", type=int, default=24)
-    a = p.parse_args(argv)
-    run(Path(a.out), a.model, a.num)
-
-
-if __name__ == "__main__":
-    main()
+            mu = []
+            for r in solve_along(cases, m):
+                mu.append(float(r["mu"]) if r["converged"] else math.nan)
+            failed += sum(math.isnan(v) for v in mu)
+            data[(variant, dist, m)] = tuple(mu)
+            if progress:
+                progress(f"{variant:10s} {dist:11s} {m:11s} done")
+    return VariantsStudy(model, tuple(float(u) for u in speeds), data, failed, quick)

@@ -1,0 +1,107 @@
+"""Admissible or nothing (issue 11): no inadmissible field is returned as converged, the
+answer does not depend on the path that led to it, and user meshes are checked."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import webfem
+from webfem import Case
+from webfem.api import solve_along
+from webfem.errors import ConvergenceError, InputError, ValidityWarning
+
+pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
+
+BASE = Case()
+
+
+def _outcome(case, model):
+    """The result, or the exception a user would see."""
+    try:
+        return webfem.solve(case, model=model)
+    except (InputError, ConvergenceError) as err:
+        return err
+
+
+@pytest.mark.parametrize("model", ["closed-form", "fe1d", "fe2d", "auto"])
+@pytest.mark.parametrize("change", [{"web.tension": 300.0}, {"web.tension": 1e-6},
+                                    {"air.viscosity": 1e3}, {"roller.speed": 1e-7}])
+def test_no_inadmissible_answer(model, change):
+    """T = 300 N/m (T/R above E_b sigma/(2t) = 5000 Pa: no gap >= 0 carries the load),
+    T = 1e-6 N/m and viscosity 1e3 (film thicker than R/100), speed 1e-7 m/s: every model
+    either refuses with an input error or answers with h_min > 0, mu <= 1 and a wrap gap
+    below R/100."""
+    out = _outcome(BASE.updated(change), model)
+    if isinstance(out, Exception):
+        assert isinstance(out, InputError), out
+        assert "\n" not in str(out)
+        return
+    assert out["converged"]
+    assert out["h_min"] >= 0.0 and out["h_center"] < BASE.roller.radius / 100
+    assert 0.0 <= out["mu"] <= 1.0
+
+
+def test_overload_message_names_the_cause():
+    """The message says why no admissible solution exists and what would help."""
+    with pytest.raises(InputError, match=r"T/R = 5455 Pa exceeds .*\(5000 Pa\).*web.tension"):
+        webfem.solve(BASE.updated({"web.tension": 300.0}), model="fe1d")
+
+
+def test_fe1d_continuation_never_jumps_branch():
+    """Started from the solution at 5 m/s, the 10 m/s solve converged to h_min = -7.9 um
+    before; now it equals the cold start (the continued start ends inadmissible, the driver
+    starts again cold)."""
+    for a, b in [(2.0, 10.0), (3.0, 14.0), (5.0, 10.0), (7.0, 14.0)]:
+        start = webfem.solve(BASE.updated({"roller.speed": a}), model="fe1d")
+        cont = webfem.solve(BASE.updated({"roller.speed": b}), model="fe1d", initial=start)
+        cold = webfem.solve(BASE.updated({"roller.speed": b}), model="fe1d")
+        assert cont["h_min"] > 0.0
+        assert cont["h_min"] == pytest.approx(cold["h_min"], rel=1e-6)
+        assert cont["mu"] == pytest.approx(cold["mu"], rel=1e-6)
+
+
+def test_fe2d_continuation_5_to_10():
+    """fe2d in a sweep 5 -> 10 m/s gave h_min = -3.18 um (cold: 4.48 um)."""
+    start = webfem.solve(BASE.updated({"roller.speed": 5.0}), model="fe2d")
+    cont = webfem.solve(BASE.updated({"roller.speed": 10.0}), model="fe2d", initial=start)
+    cold = webfem.solve(BASE.updated({"roller.speed": 10.0}), model="fe2d")
+    assert cont["h_min"] == pytest.approx(cold["h_min"], rel=1e-6)
+    assert 4e-6 < cold["h_min"] < 5e-6
+
+
+def test_low_speed_answers_do_not_depend_on_the_path():
+    """A landed web sits within round-off of h_c, on Eq. 29's jump: the boundary regime is
+    where contact carries >= 99.9 % of T/R, so forward, backward and cold solves agree."""
+    cases = [BASE.updated({"roller.speed": u}) for u in np.linspace(0.5, 5.0, 6)]
+    forward = [r["mu"] for r in solve_along(cases, "fe1d")]
+    backward = [r["mu"] for r in solve_along(cases[::-1], "fe1d")][::-1]
+    cold = [webfem.solve(c, model="fe1d")["mu"] for c in cases]
+    assert np.allclose(forward, cold, rtol=1e-9, atol=0)
+    assert np.allclose(backward, cold, rtol=1e-9, atol=0)
+
+
+def test_coarse_user_mesh_is_flagged_with_an_error_estimate():
+    """A 5-node user mesh over +-1 m: the summary names the user mesh and a warning gives
+    the change of the gaps when every cell is halved."""
+    nodes = np.linspace(-1.0, 1.0, 5) / BASE.x_scale
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidityWarning)
+        r = webfem.solve(BASE, model="fe1d", nodes=nodes)
+    assert r.summary.mesh.startswith("user nodes")
+    text = [w for w in r.summary.warnings if w.startswith("user mesh")]
+    assert text and "halving every cell changes h_center by" in text[0]
+    assert any("user mesh" in str(w.message) for w in caught)
+    # the graded default mesh gets no such warning
+    assert not any(w.startswith("user mesh") for w in webfem.solve(BASE, model="fe1d")
+                   .summary.warnings)
+
+
+def test_json_is_strict():
+    """Non-finite numbers never reach the JSON as Infinity or NaN."""
+    r = webfem.solve(BASE, model="fe1d")
+    text = r.summary.to_json()
+    assert "Infinity" not in text and "NaN" not in text
+    assert all(v is None or not isinstance(v, float) or math.isfinite(v)
+               for v in r.to_dict().values())

@@ -1,0 +1,97 @@
+"""The ``webfem`` command: the parser, dispatch to one module per subcommand, exit codes.
+
+Exit codes: 0 done; 2 bad input (an InputError, an unusable output path, a usage error);
+3 no converged solution; 4 traction-loss found no speed in range; 130 interrupted (Ctrl-C).
+Every failure is one line on stderr, never a traceback. Output cut short by the reader
+(``webfem keys | head``) ends quietly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+import warnings
+
+from ..errors import ConvergenceError, InputError, ValidityWarning
+from .common import error_line
+
+__all__ = ["main", "build_parser", "SUBCOMMANDS"]
+
+#: The subcommand modules of this package, in the order ``webfem --help`` lists them.
+SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", "keys")
+
+
+def _modules():
+    for name in SUBCOMMANDS:
+        try:
+            yield importlib.import_module(f"{__package__}.{name}")
+        except ModuleNotFoundError as err:   # study.py is written by another hand
+            if name != "study" or err.name != f"{__package__}.{name}":
+                raise
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``webfem`` parser: each module's ``add_parser`` adds its subcommand, and the
+    parsed arguments carry the module's ``run``."""
+    parser = argparse.ArgumentParser(
+        prog="webfem",
+        description="Air film and traction between a moving web and a roller "
+                    "(Hashimoto's model: closed form and finite elements).")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for module in _modules():
+        before = set(sub.choices)
+        module.add_parser(sub)
+        for name in set(sub.choices) - before:
+            sub.choices[name].set_defaults(_run=module.run)
+    return parser
+
+
+def _stdout_gone() -> None:
+    """The reader closed the pipe: send what is still buffered nowhere, so the interpreter's
+    last flush does not complain."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):   # no real file descriptor (tests)
+        pass
+
+
+def _interrupted(err: KeyboardInterrupt) -> None:
+    """One line; a sweep's interruption (webfem.sweeps.SweepInterrupted) says what is saved."""
+    saved, total, path = (getattr(err, k, None) for k in ("saved", "total", "csv_path"))
+    start = "\n" if sys.stderr.isatty() else ""   # after a live progress line
+    if saved is not None and total is not None and path is not None:
+        print(f"{start}webfem: interrupted: {saved} of {total} points saved in {path}; run "
+              "the same command to continue", file=sys.stderr)
+    else:
+        print(f"{start}webfem: interrupted", file=sys.stderr)
+
+
+def main(argv=None) -> int:
+    """Run ``webfem`` with ``argv`` (default: the command line); returns the exit code."""
+    args = build_parser().parse_args(argv)
+    try:
+        with warnings.catch_warnings():
+            # the summary (or the JSON "warnings" key) already carries each validity warning
+            warnings.simplefilter("ignore", ValidityWarning)
+            code = args._run(args)
+        sys.stdout.flush()   # a closed pipe shows here, inside the handlers below
+        return code
+    except InputError as err:
+        error_line(err)
+        return 2
+    except ConvergenceError as err:
+        error_line(err)
+        return 3
+    except KeyboardInterrupt as err:
+        _interrupted(err)
+        return 130
+    except BrokenPipeError:
+        _stdout_gone()
+        return 0
+    except OSError as err:   # e.g. an output path that cannot be written after all
+        where = f"'{err.filename}': " if err.filename else ""
+        error_line(f"{where}{err.strerror or err}")
+        return 2

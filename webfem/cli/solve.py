@@ -1,0 +1,72 @@
+"""``webfem solve``: one operating point; a summary (or JSON), VTU files, film pictures."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ..api import solve
+from ..errors import ConvergenceError, InputError
+from .common import (HELP_FORMATTER, add_case_arguments, case_from, error_line, model_options,
+                     options_epilog, output_folder, print_json)
+
+#: Models whose results never carry a 2-D film (``--plot`` is refused before solving).
+NO_FILM = ("closed-form", "fe1d")
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("solve", help="solve one operating point and print a summary",
+                              formatter_class=HELP_FORMATTER, epilog=options_epilog())
+    add_case_arguments(p)
+    p.add_argument("--vtu", metavar="DIR",
+                   help="write VTU files of the web (and film, fe2d) into DIR for ParaView")
+    p.add_argument("--plot", action="store_true",
+                   help="render PNG pictures of p and h of the film (fe2d) with pyvista, into "
+                        "the --vtu DIR (or the current folder)")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (keys: model, h_center, h_inlet, h_outlet, h_min, "
+                        "mu, delta_T, regime, lambda, beta, eq21_valid, converged, iterations, "
+                        "n_dofs, solve_time_s, ...)")
+
+
+def _write_vtu(result, folder, stem) -> list[Path]:
+    from ..io.vtu import write_result
+    return write_result(result, folder, stem)
+
+
+def run(args) -> int:
+    case = case_from(args)
+    options = model_options(args)
+    if args.plot and args.model in NO_FILM:
+        raise InputError(f"--plot draws the 2-D film, which model {args.model} does not "
+                         "solve: use --model fe2d (or drop --plot)")
+    vtu = output_folder(args.vtu, "--vtu") if args.vtu else None
+    pictures = output_folder(args.vtu or ".", "--vtu" if args.vtu else "--plot (current "
+                             "folder)") if args.plot else None
+    stem = f"{Path(args.case).stem}_{args.model}"
+    try:
+        result = solve(case, model=args.model, options=options)
+    except ConvergenceError as err:
+        error_line(err)
+        if err.result is not None:
+            if args.json:
+                print_json(err.result.to_dict())
+            if vtu:   # the last iterate, for inspection, marked in its file names
+                for path in _write_vtu(err.result, vtu, stem):
+                    print(f"wrote {path} (NOT converged)", file=sys.stderr)
+        return 3
+    if args.json:
+        print_json(result.to_dict())
+    else:
+        print(result.describe())
+    for path in _write_vtu(result, vtu, stem) if vtu else []:
+        print(f"wrote {path}", file=sys.stderr)
+    if pictures:
+        if result.film is None:   # auto chose a model without a film
+            raise InputError(f"--plot: model {args.model} answered with "
+                             f"{result.get('model_used', args.model)}, which has no 2-D film "
+                             "to draw: use --model fe2d")
+        from ..io.pictures import film_pictures
+        for path in film_pictures(result, pictures, stem):
+            print(f"wrote {path}", file=sys.stderr)
+    return 0

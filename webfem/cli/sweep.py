@@ -1,0 +1,71 @@
+"""``webfem sweep``: a parameter sweep ([sweep] and [[series]] tables) into a CSV and a chart;
+resumable (a re-run of the same sweep solves only what is missing)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ..case import load_sweep
+from .common import (HELP_FORMATTER, Progress, add_case_arguments, model_options,
+                     options_epilog, output_folder, overrides, positive_int)
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("sweep", help="sweep a parameter ([sweep] table): CSV and chart; "
+                                            "each point is saved as it finishes and a re-run "
+                                            "of the same sweep resumes where it stopped",
+                              formatter_class=HELP_FORMATTER, epilog=options_epilog())
+    add_case_arguments(p)
+    p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv and .png")
+    p.add_argument("--quiet", action="store_true", help="no progress line")
+    p.add_argument("--vtu", metavar="DIR",
+                   help="also write VTU files per point and a .pvd collection per series")
+    p.add_argument("--num", type=int,
+                   help="override the number of swept values (same range)")
+    p.add_argument("--log", action="store_true",
+                   help="with --num: logarithmic spacing (the range must be > 0)")
+    p.add_argument("--workers", type=positive_int, default=1,
+                   help="local worker processes (default 1: serial with continuation from "
+                        "point to point; > 1: chunks of points in parallel)")
+    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
+                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
+                        "workers), an address joins an existing scheduler")
+
+
+def run(args) -> int:
+    from ..api import sweep as sweep_in_memory
+    from ..io.charts import sweep_chart
+    from ..io.tables import sweep_rows
+    from ..io.vtu import SweepVtu
+    from ..sweeps import run as run_sweep
+
+    spec = load_sweep(args.case, overrides(args))
+    if args.num is not None or args.log:
+        spec = spec.respaced(args.num, log=args.log)   # --log without --num is an error
+    options = model_options(args)
+    out = output_folder(args.out, "--out")
+    vtu_dir = output_folder(args.vtu, "--vtu") if args.vtu else None
+    stem = f"{Path(args.case).stem}_{args.model}"
+    where = ("Dask " + args.dask) if args.dask else (
+        f"{args.workers} processes" if args.workers > 1 else "serial, with continuation")
+    print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
+          f"{len(spec.values)} values x {len(spec.series)} series ({where})", file=sys.stderr)
+    csv_path = out / f"{stem}.csv"
+    rows = run_sweep(spec, args.model, csv_path, options=options, workers=args.workers,
+                     dask=args.dask, progress=None if args.quiet else Progress(),
+                     vtu=SweepVtu(vtu_dir, stem, spec.parameter) if vtu_dir else None)
+    reference = None
+    if args.model != "closed-form":   # the paper's model beside the field solution
+        reference = sweep_rows(sweep_in_memory(spec, "closed-form"), spec.parameter)
+    png_path = sweep_chart(rows, out / f"{stem}.png",
+                           title=f"{Path(args.case).stem}: {args.model}"
+                           + (" (thin: closed form, Eq. 21)" if reference else ""),
+                           reference=reference)
+    print(f"wrote {csv_path}\nwrote {png_path}")
+    failed = [r for r in rows if not r["converged"]]
+    if failed:
+        print(f"webfem: {len(failed)} of {len(rows)} points did not converge (see the CSV)",
+              file=sys.stderr)
+        return 3
+    return 0

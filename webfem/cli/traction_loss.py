@@ -1,0 +1,60 @@
+"""``webfem traction-loss``: the roller speed at which mu falls below a threshold, and a chart
+of that speed against the paper's operating parameters."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ..traction import CHART_PARAMETERS, mu_curve, traction_loss_speed, traction_loss_table
+from .common import (HELP_FORMATTER, Progress, add_case_arguments, case_from, model_options,
+                     options_epilog, output_folder, positive_int, print_json)
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("traction-loss",
+                              help="roller speed at which mu falls below a threshold",
+                              formatter_class=HELP_FORMATTER, epilog=options_epilog())
+    add_case_arguments(p)
+    p.add_argument("--mu-min", type=float, required=True, help="friction threshold, e.g. 0.1")
+    p.add_argument("--min-speed", type=float, default=0.5, help="scan from (m/s, default 0.5)")
+    p.add_argument("--max-speed", type=float, default=100.0, help="scan to (m/s, default 100)")
+    p.add_argument("--json", action="store_true",
+                   help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
+                        "speed_peak, bracket, evaluations, message")
+    p.add_argument("--chart", metavar="DIR",
+                   help="also chart the traction-loss speed against T, B, L and R (closed "
+                        "form and --model) into DIR")
+    p.add_argument("--points", type=positive_int, default=5,
+                   help="points per parameter in the chart")
+    p.add_argument("--quiet", action="store_true", help="no progress line")
+
+
+def run(args) -> int:
+    case = case_from(args)
+    options = model_options(args)
+    chart_dir = output_folder(args.chart, "--chart") if args.chart else None
+    speed_range = (args.min_speed, args.max_speed)
+    out = traction_loss_speed(case, args.mu_min, model=args.model, speed_range=speed_range,
+                              options=options)
+    if args.json:
+        print_json(out.to_dict())
+    else:
+        print(f"webfem traction-loss ({out.model}): {out.message}; peak mu "
+              f"{out.mu_peak:.4f} at {out.speed_peak:.3g} m/s; {out.evaluations} solves")
+    if chart_dir:
+        from ..io.charts import traction_loss_chart
+
+        models = list(dict.fromkeys(["closed-form", args.model]))
+        rows = traction_loss_table(case, out.mu_min, models, n=args.points, options=options,
+                                   progress=None if args.quiet else Progress())
+        speeds = np.geomspace(max(args.min_speed, 1e-3), args.max_speed, 40)
+        curves = {m: mu_curve(case, m, speeds, options if m == args.model else None)
+                  for m in models}
+        path = traction_loss_chart(rows, curves, out.mu_min,
+                                   chart_dir / f"{Path(args.case).stem}_traction_loss.png",
+                                   CHART_PARAMETERS)
+        print(f"wrote {path}", file=sys.stderr)
+    return 0 if out.speed is not None else 4

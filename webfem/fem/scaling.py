@@ -1,0 +1,77 @@
+"""The scaled parameters of a case: what the FE forms see (Eshel-Elrod scaling).
+
+X = x / (R eps^(1/3)), H = h / (R eps^(2/3)), P = (p - p_a) R / T with eps = 6 eta U / T.
+The forms in :mod:`webfem.fem.forms`, :mod:`webfem.fem.film2d` and :mod:`webfem.fem.web`
+take these numbers, never a case.
+
+Examples
+--------
+>>> from webfem import Case
+>>> prm = FoilParameters.from_case(Case().updated({"roller.speed": 40.0}))
+>>> round(prm.beta, 1), prm.contact
+(27.7, 1.0)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..physics.contact import contact_gap
+
+__all__ = ["FoilParameters"]
+
+
+@dataclass(frozen=True)
+class FoilParameters:
+    """Dimensionless parameters of the scaled problem.
+
+    beta wrap length B/eps^(1/3); K = 12 k/(R t eps^(4/3)) permeation; d = T/(R p_a)
+    compressibility (0: incompressible); Dn = D/(T (R eps^(1/3))^2) bending; c, S contact
+    pressure Pc = c exp(-H/S) (exponential heights, ``law`` 0; Gaussian, ``law`` 1, see
+    :func:`webfem.fem.forms.contact_law`); contact 1/0; floor: the scaled film thickness
+    below which Reynolds sees a smooth floor (from_case takes it as a fraction of sigma);
+    H_c: the scaled gap at which contact alone carries T/R.
+    """
+
+    beta: float
+    K: float
+    d: float
+    Dn: float
+    c: float
+    S: float
+    contact: float
+    floor: float
+    law: int = 0
+    H_c: float = 0.0
+
+    @classmethod
+    def from_case(cls, case, compressible=True, contact=True, floor=0.1) -> "FoilParameters":
+        """The parameters of ``case`` (a :class:`webfem.case.Case`); ``floor`` is a fraction
+        of the roughness sigma."""
+        R, T, eps = case.roller.radius, case.web.tension, case.eps
+        w = case.web
+        gaussian = case.friction.distribution == "gaussian"
+        # exponential: Pc = c exp(-H/S); Gaussian: Pc = c (S/sqrt(2 pi) e^(-H^2/2S^2) - ...)
+        c = (w.modulus_thickness * R * case.h_scale / (w.thickness * T) if gaussian else
+             w.modulus_thickness * case.sigma * R / (2.0 * w.thickness * T))
+        h_c = contact_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
+                          case.friction.distribution)
+        return cls(
+            beta=case.beta,
+            K=12.0 * w.permeability / (R * w.thickness * eps ** (4 / 3)),
+            d=case.p_bar / case.air.ambient_pressure if compressible else 0.0,
+            Dn=w.bending_stiffness / (T * case.x_scale**2),
+            c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0,
+            floor=floor * case.sigma / case.h_scale,
+            law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
+        )
+
+    def as_form_args(self) -> dict:
+        """The keyword arguments the forms' coefficient functions take."""
+        return dict(beta=self.beta, K=self.K, d=self.d, Dn=self.Dn, c=self.c, S=self.S,
+                    contact=self.contact, floor=self.floor, law=self.law)
+
+    def homotopy(self, s: float) -> "FoilParameters":
+        """Permeation, compressibility and bending scaled by ``s``: s = 0 is the Eshel-Elrod
+        problem, which Newton solves from a cold start (continuation)."""
+        return replace(self, K=s * self.K, d=s * self.d, Dn=s * self.Dn)

@@ -1,0 +1,309 @@
+"""The one FE driver shared by the 1-D and 2-D models.
+
+:func:`solve_fe` takes a case, an options object and a :class:`Discretisation` (what differs
+between the models: how the discrete problem is built and started, how a state moves to a
+finer mesh, what the mesh is called) and does everything else once: the method dispatch
+(Newton, Picard, staggered Picard), the adaptive refinement where the film is thin, the
+admissibility check of the answer (and what a careful analyst tries when it fails), the
+summary, the fields and the failure handling.
+
+A discrete problem (:class:`FEProblem`) offers ``X`` (its scaled x nodes), ``n_dofs``,
+``gap(u, prm, X)``, ``pressure(u, X)`` and ``solve_newton/solve_picard(u0, prm, options)``
+returning ``(u, info)``; ``info`` has converged, iterations, residual, history, reason.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+from numpy.polynomial.legendre import leggauss
+
+from ..case import Case
+from ..errors import ConvergenceError, InputError
+from ..fem import forms
+from ..fem.scaling import FoilParameters
+from ..physics.closed_form import eq21_valid
+from ..physics.contact import REGIMES
+from ..physics.friction import delta_T_from_mu, friction_for
+from ..physics.validity import (contact_overload, slip_warning, thin_film_check,
+                                 wrap_length_check)
+from ..result import Diagnostics, Fields, Result, Summary
+
+__all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
+           "admissibility"]
+
+#: The methods of a problem that each ``method`` option calls.
+METHODS = {"newton": "solve_newton", "picard": "solve_picard",
+           "picard-staggered": "solve_picard_staggered"}
+
+
+class FEProblem(Protocol):
+    """What the driver needs of a discrete problem on one mesh."""
+
+    X: np.ndarray
+    n_dofs: int
+
+    def gap(self, u, prm, X) -> np.ndarray: ...
+    def pressure(self, u, X) -> np.ndarray: ...
+    def solve_newton(self, u0, prm, options) -> tuple[np.ndarray, dict]: ...
+    def solve_picard(self, u0, prm, options) -> tuple[np.ndarray, dict]: ...
+
+
+@dataclass
+class Start:
+    """A discrete problem and its start vector; ``iterations`` already spent getting there
+    (the 2-D model's 1-D solve) and ``solver`` objects to keep in the result."""
+
+    problem: Any
+    u0: np.ndarray
+    iterations: int = 0
+    solver: dict = field(default_factory=dict)
+
+
+class Discretisation(Protocol):
+    """What differs between the 1-D and 2-D models."""
+
+    name: str
+
+    def start(self, case: Case, prm: FoilParameters, options, initial) -> Start: ...
+    def refined(self, problem, u, prm, X: np.ndarray, options) -> tuple[Any, np.ndarray]: ...
+    def mesh_text(self, problem, options) -> str: ...
+    def summary_extra(self, case: Case, problem, options) -> dict: ...
+    def film(self, case: Case, problem, u, prm): ...
+
+
+def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, dict]:
+    method = METHODS[options.method]
+    if not hasattr(problem, method):
+        raise InputError(f"method = {options.method!r} is not available for this model")
+    return getattr(problem, method)(u0, prm, options)
+
+
+def _solve_and_refine(disc: Discretisation, start: Start, prm, options):
+    """Solve on the starting mesh, then refine where the film is thin and solve again, up to
+    ``options.adapt`` rounds."""
+    problem = start.problem
+    u, info = _iterate(problem, start.u0, prm, options)
+    info["iterations"] += start.iterations
+    rounds = 0
+    while info["converged"] and rounds < options.adapt:
+        X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
+        if X is None:
+            break
+        rounds += 1
+        finer, u_fine = disc.refined(problem, u, prm, X, options)
+        u, info_fine = _iterate(finer, u_fine, prm, options)
+        info_fine["iterations"] += info["iterations"]
+        info_fine["history"] = list(info["history"]) + list(info_fine["history"])
+        problem, info = finer, info_fine
+    info["adapt_rounds"] = rounds
+    return problem, u, info
+
+
+def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None = None,
+             raise_on_failure: bool = True) -> Result:
+    """Solve ``case`` with the model ``disc`` and its ``options``; see the module text.
+
+    A start from ``initial`` (continuation) that fails or ends inadmissible is retried from
+    a cold start, so the answer never depends on the path. Raises
+    :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when no converged,
+    admissible solution is found, unless ``raise_on_failure`` is False.
+    """
+    thin_film_check(case)
+    wrap_length_check(case)
+    t0 = time.perf_counter()
+    prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
+    start = disc.start(case, prm, options, initial)
+    problem, u, info = _solve_and_refine(disc, start, prm, options)
+    why = admissibility(case, problem, u, prm) if info["converged"] else None
+    if initial is not None and (not info["converged"] or why):
+        cold = disc.start(case, prm, options, None)
+        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, options)
+        info2["iterations"] += info["iterations"]
+        info2["history"] = list(info["history"]) + list(info2["history"])
+        info2["reason"] = (f"{info2.get('reason', '')} (cold start after the continued "
+                           f"start {'ended inadmissible: ' + why if why else 'failed'})")
+        start, problem, u, info = cold, problem2, u2, info2
+        why = admissibility(case, problem, u, prm) if info["converged"] else None
+    if why:
+        _no_admissible_solution(case, prm, why)
+        info["converged"] = False
+        info["reason"] = f"converged to an inadmissible field: {why}"
+    notes = _user_mesh_check(disc, case, problem, u, prm, options) if info["converged"] else []
+    elapsed = time.perf_counter() - t0
+    result = _result(disc, case, problem, u, prm, info, elapsed, options, start.solver, notes)
+    if not result.summary.converged and raise_on_failure:
+        raise ConvergenceError(f"{disc.name} ({options.method}) did not converge: "
+                               f"{info['reason']} after {info['iterations']} iterations, "
+                               f"residual {info['residual']:.3e}", result, info.get("history"))
+    return result
+
+
+#: A user mesh is checked when its cells near the wrap edges are longer than this, in units
+#: of R eps^(1/3) (the film's entry length; webfem's graded mesh puts 0.08 there).
+USER_CELL_LIMIT = 0.5
+
+
+def _user_mesh_check(disc, case: Case, problem, u, prm, options) -> list[str]:
+    """For a user mesh coarser than the film's length scale near the wrap edges: a warning
+    with an a-posteriori error estimate (the change of the gaps when every cell is halved)."""
+    if options.mesh is None and options.nodes is None:
+        return []
+    X = problem.X
+    mid = 0.5 * (X[1:] + X[:-1])
+    near = np.abs(np.abs(mid) - 0.5 * prm.beta) < 5.0
+    longest = float(np.diff(X)[near].max()) if near.any() else float(np.ptp(X))
+    if longest <= USER_CELL_LIMIT:
+        return []
+    finer, u_fine = disc.refined(problem, u, prm, np.sort(np.concatenate([X, mid])), options)
+    u_fine, info = _iterate(finer, u_fine, prm, options)
+    text = (f"user mesh: cells up to {longest:.3g} R eps^(1/3) long near the wrap edges, "
+            f"where the film changes over about one R eps^(1/3) (webfem's graded mesh: 0.08)")
+    if not info["converged"]:
+        return [text + "; on the mesh with every cell halved the solve does not converge: "
+                "its error is unknown and likely large"]
+    a = problem.gap(u, prm, np.array([0.0])), finer.gap(u_fine, prm, np.array([0.0]))
+    b = minimum(problem, u, prm)[0], minimum(finer, u_fine, prm)[0]
+    dc, dm = abs(a[1][0] / a[0][0] - 1.0), abs(b[1] / b[0] - 1.0)
+    return [text + f"; halving every cell changes h_center by {100 * dc:.2g} % and h_min by "
+            f"{100 * dm:.2g} % (an estimate of this mesh's error): refine the mesh or use "
+            "webfem's graded one"]
+
+
+def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
+    """Why a converged state is not an answer, or None when it is admissible: the gap must
+    be positive everywhere in the solved domain (with contact the web rests on its
+    asperities, never through them) and the absolute film pressure positive."""
+    X = problem.X
+    H = problem.gap(u, prm, X)
+    if not np.all(np.isfinite(H)):
+        return "the gap is not finite"
+    Hmin, Xmin = minimum(problem, u, prm)
+    if Hmin <= 0.0:
+        return (f"the gap reaches {Hmin * case.h_scale:.3g} m <= 0 at x = "
+                f"{Xmin * case.x_scale:.3g} m")
+    p_abs = case.air.ambient_pressure + problem.pressure(u, X) * case.p_bar
+    if np.min(p_abs) <= 0.0:
+        return f"the absolute film pressure reaches {np.min(p_abs):.3g} Pa <= 0"
+    return None
+
+
+def _no_admissible_solution(case: Case, prm: FoilParameters, why: str) -> None:
+    """An input error when the case admits no solution with a positive gap: the web lands
+    and the contact law cannot carry T/R at any h >= 0."""
+    overload = contact_overload(case) if prm.contact else None
+    if overload:
+        raise InputError(f"no admissible solution: the web lands ({why}) and {overload}")
+
+
+def minimum(problem, u, prm) -> tuple[float, float]:
+    """Smallest scaled gap in the domain and where: nodal search refined inside the
+    adjacent cells."""
+    Hn = problem.gap(u, prm, problem.X)
+    i = int(np.argmin(Hn))
+    lo, hi = problem.X[max(i - 1, 0)], problem.X[min(i + 1, len(problem.X) - 1)]
+    Xs = np.linspace(lo, hi, 81)
+    Hs = problem.gap(u, prm, Xs)
+    j = int(np.argmin(Hs))
+    return float(Hs[j]), float(Xs[j])
+
+
+def wrap_samples(X: np.ndarray, beta: float, n: int = 8):
+    """Gauss points and weights over the wrap cells (nodes sit on the wrap edges)."""
+    e = 0.5 * beta
+    inner = X[(X >= -e - 1e-12) & (X <= e + 1e-12)]
+    g, gw = leggauss(n)
+    a, b = inner[:-1, None], inner[1:, None]
+    pts = 0.5 * (a + b) + 0.5 * (b - a) * g[None, :]
+    wts = 0.5 * (b - a) * gw[None, :]
+    return pts.ravel(), wts.ravel()
+
+
+def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
+    """Bisect cells longer than ``ratio`` times the local film or contact length, or None.
+
+    Where the film is thin the sink and the contact springs make boundary layers far
+    shorter than the entry-zone scale: the film's reaction length sqrt(H^3 / K) and the
+    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities. No refinement past
+    ``max_cells`` cells.
+    """
+    X = problem.X
+    # films thinner than the roughness carry nothing the asperities do not: resolve to S
+    H = np.maximum(problem.gap(u, prm, X), max(prm.floor, prm.S if prm.contact else 0.0))
+    Hc = np.minimum(H[1:], H[:-1])
+    scale = np.full(Hc.shape, np.inf)
+    if prm.K > 0:
+        scale = np.minimum(scale, np.sqrt(Hc**3 / prm.K))
+    if prm.contact:
+        with np.errstate(all="ignore"):
+            scale = np.minimum(scale,
+                               1.0 / np.sqrt(forms.contact_law(Hc, prm.as_form_args())[1]))
+    dx = np.diff(X)
+    mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
+    if not mark.any() or X.size + mark.sum() > max_cells:
+        return None
+    return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
+
+
+def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) -> Result:
+    Hs, Xs = case.h_scale, case.x_scale
+    pts, wts = wrap_samples(problem.X, prm.beta)
+    h = problem.gap(u, prm, pts) * Hs
+    loc = friction_for(case, h, resting=True)
+    mu = float(np.sum(loc["mu"] * wts) / prm.beta)
+    shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
+    Pf = problem.pressure(u, pts)
+    Pc = forms.contact_law(h / Hs, prm.as_form_args())[0]
+    contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
+    Hmin, Xmin = minimum(problem, u, prm)
+    e = 0.5 * prm.beta
+    H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
+    extra = dict(disc.summary_extra(case, problem, options))
+    warnings = list(_warnings(case, options)) + list(extra.pop("warnings", [])) + notes
+    slip = slip_warning(case, Hmin * Hs)
+    if slip:
+        warnings.append(slip)
+    summary = Summary(
+        model=disc.name, h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
+        h_min=Hmin * Hs, x_min=Xmin * Xs, mu=mu,
+        delta_T=float(delta_T_from_mu(mu, case.web.tension, case.B)),
+        regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
+        eq21_valid=bool(eq21_valid(case.beta, case.lam)),
+        converged=bool(info["converged"]), iterations=int(info["iterations"]),
+        n_dofs=int(problem.n_dofs), solve_time_s=elapsed, residual=float(info["residual"]),
+        h_c=float(prm.H_c * Hs), sigma=case.sigma, share_boundary=shares[0],
+        share_mixed=shares[1], share_fluid=shares[2], contact_share=contact_share,
+        eps=case.eps, kappa=case.kappa, U=case.U, U_slide=case.U_slide,
+        method=options.method, mesh=disc.mesh_text(problem, options),
+        warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
+        solver_message=info.get("reason", ""), **{"n_cells": len(problem.X) - 1, **extra})
+    diagnostics = Diagnostics(
+        method=options.method, history=tuple(info.get("history", [])),
+        reason=info.get("reason", ""), continuation=tuple(info.get("steps", [])),
+        options=options, wrap_h=h, wrap_w=wts / prm.beta, omegas=info.get("omegas"),
+        block_iterations=info.get("block_iterations"),
+        solver={**solver, "problem": problem, "state": u})
+    return Result(case, summary, _node_fields(case, problem, u, prm), diagnostics,
+                  disc.film(case, problem, u, prm))
+
+
+def _warnings(case: Case, options):
+    if not options.compressible and case.p_bar > 0.02 * case.air.ambient_pressure:
+        ratio = case.p_bar / case.air.ambient_pressure
+        yield (f"incompressible film with T/R = {ratio:.3g} p_a > 0.02 p_a: compressibility "
+               f"shifts the central gap by about {-45 * ratio:.2g} % (use compressible=True)")
+
+
+def _node_fields(case: Case, problem, u, prm: FoilParameters) -> Fields:
+    X = problem.X
+    Hs = case.h_scale
+    H = problem.gap(u, prm, X)
+    h = H * Hs
+    p_rel = problem.pressure(u, X) * case.p_bar
+    return Fields(x=X * case.x_scale, h=h, w=h - forms.departure(X, prm.beta) * Hs,
+                  p_rel=p_rel, p=p_rel + case.air.ambient_pressure,
+                  p_contact=forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
+                  in_wrap=forms.in_wrap(X, prm.beta), **friction_for(case, h, resting=True))

@@ -1,0 +1,361 @@
+"""Solver options as types: one frozen dataclass per model, validated on creation.
+
+Every option is a named, documented field with its valid range in the field's metadata;
+:class:`Options` checks them all in one place, builds an options object from keywords
+(:meth:`Options.from_mapping`: unknown names are errors that suggest the closest valid one)
+or from the command line's strings (:meth:`Options.from_strings`), and describes itself for
+``--help``. The registry (:mod:`webfem.models.registry`) ties each model to its type.
+
+Examples
+--------
+>>> FE1DOptions().level, FE1DOptions(level=2).level
+(0, 2)
+>>> FE1DOptions.from_mapping({"levle": 2})
+Traceback (most recent call last):
+...
+webfem.errors.InputError: unknown fe1d option 'levle'; did you mean 'level'?
+>>> FE2DOptions.from_strings(["level=1", "method=picard"]).method
+'picard'
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, ClassVar, Mapping
+
+import numpy as np
+
+from ..errors import InputError, unknown_name
+
+__all__ = ["Options", "ClosedFormOptions", "FE1DOptions", "FE2DOptions", "AutoOptions",
+           "option"]
+
+_TRUE = {"true", "yes", "on", "1"}
+_FALSE = {"false", "no", "off", "0"}
+
+
+def option(default, doc: str, kind: str, *, lo=None, hi=None, lo_open=False, hi_open=False,
+           choices: tuple = (), none: bool = False, cli: bool = True):
+    """A field with its documentation and valid range.
+
+    ``kind``: "int", "float", "bool", "choice", "path" or "nodes" (an array, API only);
+    ``lo``/``hi``: bounds (open or closed); ``none``: None is allowed (meaning stated in
+    ``doc``); ``cli``: settable with ``--opt``.
+    """
+    meta = dict(doc=doc, kind=kind, lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open,
+                choices=tuple(choices), none=none, cli=cli)
+    return field(default=default, metadata=meta)
+
+
+def _range_text(meta: Mapping[str, Any]) -> str:
+    kind = meta["kind"]
+    if kind == "choice":
+        text = "one of " + ", ".join(repr(c) for c in meta["choices"])
+    elif kind == "bool":
+        text = "true or false"
+    elif kind in ("path", "nodes"):
+        text = "a mesh file" if kind == "path" else "an array of node positions"
+    else:
+        parts = []
+        if meta["lo"] is not None:
+            parts.append(f"{'>' if meta['lo_open'] else '>='} {meta['lo']:g}")
+        if meta["hi"] is not None:
+            parts.append(f"{'<' if meta['hi_open'] else '<='} {meta['hi']:g}")
+        text = ("an integer" if kind == "int" else "a finite number") + (
+            " " + " and ".join(parts) if parts else "")
+    return text + (" (or none)" if meta["none"] else "")
+
+
+@dataclass(frozen=True, repr=False)
+class Options:
+    """Shared validation and construction of the per-model option types."""
+
+    #: The model these options belong to (for messages).
+    model: ClassVar[str] = ""
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            value = self._checked(f, getattr(self, f.name))
+            object.__setattr__(self, f.name, value)
+
+    @classmethod
+    def _checked(cls, f: dataclasses.Field, value: Any) -> Any:
+        meta = f.metadata
+        kind = meta["kind"]
+        name = f"{cls.model} option {f.name}" if cls.model else f.name
+
+        def bad(why="is not valid"):
+            return InputError(f"{name} = {value!r} {why}: must be {_range_text(meta)}")
+
+        if value is None:
+            if meta["none"]:
+                return None
+            raise bad()
+        if kind == "bool":
+            if not isinstance(value, (bool, np.bool_)):
+                raise bad()
+            return bool(value)
+        if kind == "choice":
+            if value not in meta["choices"]:
+                raise bad()
+            return value
+        if kind == "path":
+            if not isinstance(value, (str, Path)):
+                raise bad()
+            if not Path(value).is_file():
+                raise InputError(f"{name}: mesh file '{value}' does not exist")
+            return str(value)
+        if kind == "nodes":
+            try:
+                arr = np.asarray(value, float).ravel()
+            except (TypeError, ValueError):
+                raise bad() from None
+            if arr.size < 3 or not np.all(np.isfinite(arr)):
+                raise bad("has fewer than 3 finite nodes")
+            return arr
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float,
+                                                                          np.number)):
+            raise bad("is not a number")
+        number = float(value)
+        if not math.isfinite(number):
+            raise bad("is out of range")
+        if kind == "int":
+            if number != int(number):
+                raise bad("is not an integer")
+            number = int(number)
+        lo, hi = meta["lo"], meta["hi"]
+        if lo is not None and (number <= lo if meta["lo_open"] else number < lo):
+            raise bad("is out of range")
+        if hi is not None and (number >= hi if meta["hi_open"] else number > hi):
+            raise bad("is out of range")
+        return number
+
+    # -- construction ---------------------------------------------------------------------
+    @classmethod
+    def names(cls) -> list[str]:
+        """Every option name of this model."""
+        return [f.name for f in dataclasses.fields(cls)]
+
+    @classmethod
+    def from_mapping(cls, values: Mapping[str, Any] | None = None):
+        """Options from keywords; an unknown name is an error naming the closest valid one."""
+        values = dict(values or {})
+        for key in values:
+            if key not in cls.names():
+                raise unknown_name(f"{cls.model} option", key, cls.names())
+        return cls(**values)
+
+    @classmethod
+    def parse(cls, name: str, text: str) -> Any:
+        """The typed value of option ``name`` from command-line ``text``."""
+        fields = {f.name: f for f in dataclasses.fields(cls)}
+        if name not in fields or not fields[name].metadata["cli"]:
+            valid = [n for n, f in fields.items() if f.metadata["cli"]]
+            raise unknown_name(f"{cls.model} option", name, valid, " (--opt)")
+        meta = fields[name].metadata
+        raw = text.strip().strip('"').strip("'")
+        kind = meta["kind"]
+        bad = InputError(f"--opt {name}={text}: {name} must be {_range_text(meta)}")
+        if meta["none"] and raw.lower() in ("none", "null", ""):
+            return None
+        if kind == "bool":
+            if raw.lower() in _TRUE:
+                return True
+            if raw.lower() in _FALSE:
+                return False
+            raise bad
+        if kind in ("choice", "path"):
+            return raw
+        try:
+            number = float(raw)
+        except ValueError:
+            raise bad from None
+        if kind == "int":
+            if not math.isfinite(number) or number != int(number):
+                raise bad
+            return int(number)
+        return number
+
+    @classmethod
+    def from_strings(cls, pairs) -> "Options":
+        """Options from ``["level=2", "method=picard"]`` (the CLI's ``--opt``)."""
+        values = {}
+        for text in pairs or []:
+            if "=" not in text:
+                raise InputError(f"--opt {text!r}: expected name=value, e.g. --opt level=2")
+            key, raw = (t.strip() for t in text.split("=", 1))
+            values[key] = cls.parse(key, raw)
+        return cls.from_mapping(values)
+
+    def replace(self, **changes) -> "Options":
+        """A copy with some options changed (validated again)."""
+        for key in changes:
+            if key not in self.names():
+                raise unknown_name(f"{self.model} option", key, self.names())
+        return dataclasses.replace(self, **changes)
+
+    def changed(self) -> dict[str, Any]:
+        """The options that differ from their defaults (for sweep signatures and repr)."""
+        out = {}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray) or not _same(value, f.default):
+                out[f.name] = value.tolist() if isinstance(value, np.ndarray) else value
+        return out
+
+    def __repr__(self) -> str:
+        changed = ", ".join(f"{k}={v!r}" for k, v in self.changed().items()
+                            if not isinstance(v, list))
+        return f"{type(self).__name__}({changed})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """All options, JSON-friendly (arrays as lists)."""
+        return {f.name: (v.tolist() if isinstance(v, np.ndarray) else v)
+                for f in dataclasses.fields(self) for v in [getattr(self, f.name)]}
+
+    @classmethod
+    def describe(cls) -> str:
+        """One line per option: name, default, valid range, meaning (for ``--help``)."""
+        lines = []
+        for f in dataclasses.fields(cls):
+            if not f.metadata["cli"]:
+                continue
+            default = "none" if f.default is None else repr(f.default)
+            lines.append(f"{f.name} = {default}: {f.metadata['doc']} "
+                         f"({_range_text(f.metadata)})")
+        return "\n".join(lines) if lines else "(no options)"
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):
+        return False
+
+
+@dataclass(frozen=True, repr=False)
+class ClosedFormOptions(Options):
+    """The paper's closed form (Eq. 21 with Eqs. 10-13, 28-31)."""
+
+    model: ClassVar[str] = "closed-form"
+    n_points: int = option(201, "points along the wrap in the fields (charts, VTU)", "int",
+                           lo=2, hi=100_000)
+
+
+_METHODS_1D = ("newton", "picard", "picard-staggered")
+
+
+@dataclass(frozen=True, repr=False)
+class FE1DOptions(Options):
+    """The 1-D (infinitely wide) finite-element model: discretisation and solver."""
+
+    model: ClassVar[str] = "fe1d"
+    entry: float = option(40.0, "length of the entry and exit zones, units of R eps^(1/3)",
+                          "float", lo=0.0, lo_open=True, hi=200.0)
+    level: int = option(0, "uniform refinement level (each bisects every cell)", "int",
+                        lo=0, hi=8)
+    order: int = option(2, "Lagrange order of the film pressure (2: P2/Q2, 1: P1/Q1)", "int",
+                        lo=1, hi=2)
+    compressible: bool = option(True, "compressible (isothermal ideal gas) film", "bool")
+    contact: bool = option(True, "asperity contact pressure in the web equilibrium", "bool")
+    method: str = option("newton", "coupling scheme", "choice", choices=_METHODS_1D)
+    tol: float = option(1e-9, "residual tolerance, 2-norm in scaled units", "float",
+                        lo=0.0, lo_open=True, hi=1e-2)
+    max_iter: int = option(60, "Newton iteration limit", "int", lo=1, hi=1000)
+    omega: float = option(1.0, "Picard relaxation factor", "float", lo=0.0, lo_open=True,
+                          hi=2.0)
+    aitken: bool = option(True, "Picard: Aitken's dynamic relaxation as the fallback", "bool")
+    anderson: int = option(10, "Picard: Anderson acceleration depth (0: off)", "int", lo=0,
+                           hi=50)
+    picard_max_iter: int = option(500, "Picard iteration limit", "int", lo=1, hi=20000)
+    floor: float = option(0.1, "film thickness floor in Reynolds, fraction of sigma", "float",
+                          lo=0.0, hi=1.0)
+    adapt: int = option(6, "rounds of refinement where the film is thin", "int", lo=0, hi=20)
+    adapt_ratio: float = option(1.0, "refine cells longer than this times the film's "
+                                "reaction length", "float", lo=0.0, lo_open=True, hi=100.0)
+    min_cell: float = option(2e-3, "smallest cell the refinement makes, scaled units",
+                             "float", lo=0.0, lo_open=True, hi=10.0)
+    continuation: bool = option(True, "Newton: continuation from the Eshel-Elrod problem on "
+                                "failure", "bool")
+    backtrack: float = option(1.5, "Picard: undo a step that raises the residual by more "
+                              "than this factor (0: off)", "float", lo=0.0, hi=1e6)
+    mesh: str | None = option(None, "mesh file whose x nodes [m] replace the graded mesh "
+                              "(e.g. one of meshes/)", "path", none=True)
+    nodes: Any = option(None, "starting nodes in scaled X (API only; mesh= reads them from a "
+                        "file)", "nodes", none=True, cli=False)
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.mesh is not None and self.nodes is not None:
+            raise InputError(f"{self.model} options mesh and nodes both given: use one")
+
+
+@dataclass(frozen=True, repr=False)
+class FE2DOptions(FE1DOptions):
+    """The 2-D film + 1-D web finite-element model."""
+
+    model: ClassVar[str] = "fe2d"
+    level: int = option(0, "uniform refinement level (each bisects every cell, both "
+                        "directions)", "int", lo=0, hi=3)
+    method: str = option("newton", "coupling scheme", "choice", choices=("newton", "picard"))
+    max_iter: int = option(40, "Newton iteration limit", "int", lo=1, hi=1000)
+    width_fine: float = option(0.25, "cell size at the web edges, scaled units", "float",
+                               lo=0.0, lo_open=True, hi=10.0)
+    symmetry: bool = option(True, "half width with a symmetry condition (false: full width)",
+                            "bool")
+
+    @classmethod
+    def line_options(cls, options: "FE2DOptions") -> FE1DOptions:
+        """The 1-D options of the infinitely wide start (same mesh and physics)."""
+        keep = ("entry", "level", "compressible", "contact", "floor", "adapt", "adapt_ratio",
+                "min_cell", "mesh", "nodes")
+        return FE1DOptions(**{k: getattr(options, k) for k in keep})
+
+
+_FE_NAMES = [f.name for f in dataclasses.fields(FE2DOptions) if f.name != "tol"]
+
+
+def _auto_fields():
+    """Auto takes every fe2d option (passed on to the FE model it uses, default: that
+    model's own) besides its own quantity and tolerance."""
+    out = []
+    for f in dataclasses.fields(FE2DOptions):
+        if f.name == "tol":
+            continue
+        meta = dict(f.metadata, none=True, doc=f.metadata["doc"] + "; passed to the FE model "
+                    "used (none: its default)")
+        out.append((f.name, Any, field(default=None, metadata=meta)))
+    return out
+
+
+@dataclass(frozen=True, repr=False)
+class _AutoBase(Options):
+    model: ClassVar[str] = "auto"
+    quantity: str = option("mu", "quantity whose relative error the choice bounds", "choice",
+                           choices=("mu", "h_center", "h_min"))
+    tol: float = option(0.01, "relative error the chosen model must meet in quantity", "float",
+                        lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    fe_tol: float | None = option(None, "residual tolerance of the FE model used (none: its "
+                                  "default)", "float", lo=0.0, lo_open=True, hi=1e-2,
+                                  none=True)
+
+
+AutoOptions = dataclasses.make_dataclass(
+    "AutoOptions", _auto_fields(), bases=(_AutoBase,), frozen=True, repr=False,
+    namespace={"__doc__": "The automatic choice of the cheapest adequate model.",
+               "__module__": __name__})
+
+
+def fe_options(auto, target: type[FE1DOptions]) -> FE1DOptions:
+    """The options of ``target`` (FE1DOptions or FE2DOptions) that an auto options object
+    sets; unset ones keep ``target``'s defaults. Options ``target`` lacks are dropped (the
+    fe2d-only width options do not reach the 1-D model)."""
+    names = set(target.names())
+    values = {k: getattr(auto, k) for k in _FE_NAMES if k in names
+              and getattr(auto, k) is not None}
+    if auto.fe_tol is not None:
+        values["tol"] = auto.fe_tol
+    return target(**values)

@@ -1,0 +1,78 @@
+"""Where the models' physics holds: the thin-film bound, the slip-flow warning, and the
+longest wrap the FE meshes resolve.
+
+Examples
+--------
+>>> from webfem import Case
+>>> thin_film_check(Case())          # the base case: h ~ 1e-3 R, fine
+>>> thin_film_check(Case().updated({"web.tension": 1e-6}))
+Traceback (most recent call last):
+...
+webfem.errors.InputError: web.tension = 1e-06 N/m with U = 20 m/s and air.viscosity = 1.81e-05 Pa s gives a film R eps^(2/3) = 9.22 m thick, more than R/100 = 0.00055 m: the thin-film (Reynolds) model does not hold; raise web.tension or lower the speeds or air.viscosity
+"""
+
+from __future__ import annotations
+
+from ..errors import InputError
+from .contact import contact_pressure
+
+__all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
+           "wrap_length_check", "slip_warning", "contact_overload"]
+
+#: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
+MEAN_FREE_PATH = 68e-9
+#: The film scale R eps^(2/3) must stay below this fraction of R: Reynolds' thin-film
+#: equation and the parabolic roller departure x^2/(2R) assume h << R.
+THIN_FILM_RATIO = 0.01
+#: Longest wrap, in units of the entry length R eps^(1/3), that the FE meshes resolve
+#: (about BETA_MAX/2 cells before refinement).
+BETA_MAX = 5000.0
+
+
+def thin_film_check(case) -> None:
+    """Raise :class:`InputError` when the film scale R eps^(2/3) exceeds
+    :data:`THIN_FILM_RATIO` R (the thin-film model does not hold)."""
+    R = case.roller.radius
+    if case.h_scale > THIN_FILM_RATIO * R:
+        raise InputError(
+            f"web.tension = {case.web.tension:g} N/m with U = {case.U:g} m/s and "
+            f"air.viscosity = {case.air.viscosity:g} Pa s gives a film R eps^(2/3) = "
+            f"{case.h_scale:.3g} m thick, more than R/100 = {THIN_FILM_RATIO * R:.2g} m: the "
+            "thin-film (Reynolds) model does not hold; raise web.tension or lower the speeds "
+            "or air.viscosity")
+
+
+def wrap_length_check(case) -> None:
+    """Raise :class:`InputError` when the wrap is longer than :data:`BETA_MAX` entry lengths
+    (very low speed: the FE mesh would need too many cells; the web rests on its asperities
+    there, which the closed form describes)."""
+    if case.beta > BETA_MAX:
+        raise InputError(
+            f"roller.speed = {case.roller.speed:g} m/s (U = {case.U:.3g} m/s) makes the wrap "
+            f"beta = {case.beta:.4g} entry lengths long, beyond the FE models' limit "
+            f"{BETA_MAX:g}: the air film is negligible there (boundary lubrication); use "
+            "model = 'closed-form' or a higher speed")
+
+
+def slip_warning(case, h_min: float) -> str | None:
+    """The slip-flow warning when the minimum gap is below 10 mean free paths, else None."""
+    mfp = MEAN_FREE_PATH * 101325.0 / case.air.ambient_pressure
+    if 0.0 < h_min < 10.0 * mfp:
+        return (f"h_min = {h_min:.3g} m is below 10 mean free paths of air ({10 * mfp:.3g} "
+                "m): slip flow, where the continuum Reynolds equation overestimates the film "
+                "pressure")
+    return None
+
+
+def contact_overload(case) -> str | None:
+    """Why no gap h >= 0 can carry the wrap pressure by contact alone, or None: T/R above
+    the asperity contact pressure at h = 0 (E_b sigma/(2t) for the exponential law)."""
+    w = case.web
+    p0 = float(contact_pressure(0.0, w.modulus_thickness, case.sigma, w.thickness,
+                                case.friction.distribution))
+    if case.p_bar <= p0:
+        return None
+    return (f"the wrap pressure T/R = {case.p_bar:.4g} Pa exceeds what the "
+            f"{case.friction.distribution} asperity contact law carries at h = 0 "
+            f"({p0:.4g} Pa); lower web.tension below {p0 * case.roller.radius:.4g} N/m or "
+            "raise web.modulus_thickness or web.roughness")

@@ -1,0 +1,226 @@
+"""The five sections of a case, validated on creation, and the dotted keys that name them.
+
+Each section is a frozen dataclass whose fields carry their unit and valid interval (or
+their valid words) as metadata; :class:`webfem.case.Case` groups one of each. Import these
+names from :mod:`webfem.case`, which re-exports them.
+
+Examples
+--------
+>>> from webfem.sections import Wrap
+>>> Wrap(angle_deg=400)
+Traceback (most recent call last):
+...
+webfem.errors.InputError: wrap.angle_deg = 400.0 is out of range: must be > 0 and < 360 [deg]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import numbers
+import reprlib
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from .errors import CaseError
+
+__all__ = ["Air", "Friction", "Roller", "Web", "Wrap", "valid_keys"]
+
+_repr = reprlib.Repr()
+_repr.maxlist = _repr.maxtuple = _repr.maxdict = 6
+_repr.maxstring = _repr.maxother = 60
+
+
+def _show(value: Any) -> str:
+    """``repr`` for messages: long lists and strings cut, huge integers as ``1.00e+400``."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**20:
+        exp = int(math.log10(abs(value)))
+        lead = abs(value) // 10 ** (exp - 2)
+        if lead >= 1000:  # log10 rounded down across a power of ten
+            exp, lead = exp + 1, lead // 10
+        return f"{'-' if value < 0 else ''}{lead / 100:.2f}e+{exp}"
+    try:
+        return _repr.repr(value)
+    except ValueError:  # an integer beyond Python's digit limit inside a container
+        return f"<{type(value).__name__} holding a number too large to print>"
+
+
+def _num(unit: str, lo: float | None = None, hi: float | None = None,
+         lo_open: bool = True, hi_open: bool = True, doc: str = ""):
+    """Field metadata: unit and valid interval (None = unbounded)."""
+    return {"unit": unit, "lo": lo, "hi": hi, "lo_open": lo_open, "hi_open": hi_open, "doc": doc}
+
+
+def _choice(*options: str, doc: str = ""):
+    return {"choices": options, "doc": doc}
+
+
+def _range_text(meta: Mapping[str, Any]) -> str:
+    lo, hi = meta["lo"], meta["hi"]
+    parts = []
+    if lo is not None:
+        parts.append(f"{'>' if meta['lo_open'] else '>='} {lo:g}")
+    if hi is not None:
+        parts.append(f"{'<' if meta['hi_open'] else '<='} {hi:g}")
+    return "must be " + " and ".join(parts) if parts else "must be finite"
+
+
+class _Section:
+    """Shared validation for the frozen section dataclasses."""
+
+    _name = ""
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            meta = f.metadata
+            key = f"{self._name}.{f.name}"
+            value = getattr(self, f.name)
+            if "choices" in meta:
+                if not isinstance(value, str) or value not in meta["choices"]:
+                    raise CaseError(f"{key} = {_show(value)} is not valid: must be one of "
+                                    + ", ".join(repr(c) for c in meta["choices"]))
+                continue
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise CaseError(f"{key} = {_show(value)} is not a number: expected a value "
+                                f"in {meta['unit']} ({_range_text(meta)})")
+            try:
+                value = float(value)
+            except OverflowError:  # an integer beyond float range (TOML allows 10**400)
+                raise CaseError(f"{key} = {_show(value)} is out of range: "
+                                f"{_range_text(meta)} [{meta['unit']}]") from None
+            object.__setattr__(self, f.name, value)
+            lo, hi = meta["lo"], meta["hi"]
+            bad = not math.isfinite(value)
+            if lo is not None:
+                bad |= value <= lo if meta["lo_open"] else value < lo
+            if hi is not None:
+                bad |= value >= hi if meta["hi_open"] else value > hi
+            if bad:
+                raise CaseError(f"{key} = {value!r} is out of range: {_range_text(meta)} "
+                                f"[{meta['unit']}]")
+
+
+@dataclass(frozen=True)
+class Roller(_Section):
+    """The roller. ``radius`` R [m], surface ``speed`` U_r [m/s], RMS ``roughness`` sigma_r [m]."""
+
+    _name = "roller"
+    radius: float = field(default=0.055, metadata=_num("m", 0.0, doc="roller radius R"))
+    speed: float = field(default=20.0, metadata=_num("m/s", 0.0, lo_open=False,
+                                                      doc="roller surface speed U_r"))
+    roughness: float = field(default=0.6e-6, metadata=_num("m", 0.0, lo_open=False,
+                                                            doc="RMS roughness sigma_r"))
+
+
+@dataclass(frozen=True)
+class Web(_Section):
+    """The web (defaults: newsprint of the paper's Table 1).
+
+    ``width`` L [m], ``tension`` T [N/m], ``speed`` U_w [m/s], ``thickness`` t [m],
+    ``modulus_thickness`` E_b [Pa], ``modulus_md`` E_m [Pa], RMS ``roughness`` sigma_w [m],
+    ``permeability`` k [m^2], ``bending_stiffness`` D [N m] (0 = membrane, the paper's model).
+    """
+
+    _name = "web"
+    width: float = field(default=0.035, metadata=_num("m", 0.0, doc="web width L"))
+    tension: float = field(default=80.0, metadata=_num("N/m", 0.0, doc="web tension T"))
+    speed: float = field(default=0.0, metadata=_num("m/s", 0.0, lo_open=False,
+                                                     doc="web speed U_w"))
+    thickness: float = field(default=70e-6, metadata=_num("m", 0.0, doc="web thickness t"))
+    modulus_thickness: float = field(default=175e3, metadata=_num(
+        "Pa", 0.0, doc="thickness-direction modulus E_b"))
+    modulus_md: float = field(default=4.46e9, metadata=_num("Pa", 0.0, doc="MD modulus E_m"))
+    roughness: float = field(default=4.0e-6, metadata=_num("m", 0.0, doc="RMS roughness sigma_w"))
+    permeability: float = field(default=5e-15, metadata=_num("m^2", 0.0, lo_open=False,
+                                                             doc="Darcy permeability k"))
+    bending_stiffness: float = field(default=0.0, metadata=_num(
+        "N m", 0.0, lo_open=False, doc="bending stiffness D (0 = membrane)"))
+
+
+@dataclass(frozen=True)
+class Wrap(_Section):
+    """Wrap ``angle_deg`` B in degrees, 0 < B < 360."""
+
+    _name = "wrap"
+    angle_deg: float = field(default=60.0, metadata=_num("deg", 0.0, 360.0,
+                                                          doc="wrap angle B"))
+
+
+@dataclass(frozen=True)
+class Air(_Section):
+    """Air ``viscosity`` eta [Pa s] and ``ambient_pressure`` p_a [Pa]."""
+
+    _name = "air"
+    viscosity: float = field(default=1.81e-5, metadata=_num("Pa s", 0.0, doc="viscosity eta"))
+    ambient_pressure: float = field(default=101325.0, metadata=_num(
+        "Pa", 0.0, doc="ambient pressure p_a"))
+
+
+@dataclass(frozen=True)
+class Friction(_Section):
+    """Friction constants and model variants.
+
+    ``mu_cc`` [-] and ``speed_constant`` C [m/s] are the paper's Eq. 29 constants.
+    ``variant``: ``"paper"`` reproduces Eqs. 13 and 29 as printed (with their jumps at
+    h = h_c and h = 3 sigma); ``"continuous"`` removes the jumps (see
+    :mod:`webfem.physics.friction`). ``roughness``: ``"web"`` uses sigma = sigma_w as
+    the paper does, ``"composite"`` uses sqrt(sigma_r^2 + sigma_w^2). ``distribution``:
+    asperity heights ``"exponential"`` (Eq. 2, the paper's) or ``"gaussian"`` (Eq. 1).
+    """
+
+    _name = "friction"
+    mu_cc: float = field(default=0.3, metadata=_num("-", 0.0, lo_open=False,
+                                                     doc="asperity friction constant mu_cc"))
+    speed_constant: float = field(default=0.4, metadata=_num("m/s", 0.0,
+                                                             doc="speed constant C"))
+    variant: str = field(default="paper", metadata=_choice(
+        "paper", "continuous", doc="Eqs. 13, 29 as printed, or without their jumps"))
+    roughness: str = field(default="web", metadata=_choice(
+        "web", "composite", doc="sigma = sigma_w (paper) or sqrt(sigma_r^2 + sigma_w^2)"))
+    distribution: str = field(default="exponential", metadata=_choice(
+        "exponential", "gaussian", doc="asperity heights: Eq. 2 (paper) or Eq. 1"))
+
+
+_SECTIONS: dict[str, type[_Section]] = {
+    "roller": Roller, "web": Web, "wrap": Wrap, "air": Air, "friction": Friction,
+}
+
+
+def valid_keys() -> list[str]:
+    """All dotted case keys, e.g. ``'roller.speed'``."""
+    return [f"{s}.{f.name}" for s, cls in _SECTIONS.items() for f in dataclasses.fields(cls)]
+
+
+_KEYS = frozenset(valid_keys())
+
+
+def _is_key(key: Any) -> bool:
+    return isinstance(key, str) and key in _KEYS
+
+
+def _unknown(key: Any, where: str = "") -> CaseError:
+    key = key if isinstance(key, str) else _show(key)
+    close = difflib.get_close_matches(key, valid_keys() + list(_SECTIONS), n=1, cutoff=0.5)
+    hint = f"; did you mean '{close[0]}'?" if close else "; valid keys: " + ", ".join(valid_keys())
+    return CaseError(f"unknown key '{key}'{where}{hint}")
+
+
+def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
+    """``{"roller": {"speed": 1}}`` -> ``{"roller.speed": 1}``, rejecting unknown keys."""
+    flat = {}
+    for section, table in data.items():
+        if section not in _SECTIONS:
+            if isinstance(table, Mapping):
+                raise _unknown(section, where)
+            flat[section] = table  # dotted key already, checked below
+            continue
+        if not isinstance(table, Mapping):
+            raise CaseError(f"'{section}'{where} must be a table of keys, got {_show(table)}")
+        for key, value in table.items():
+            flat[f"{section}.{key}"] = value
+    for key in flat:
+        if not _is_key(key):
+            raise _unknown(key, where)
+    return flat
+

@@ -1,0 +1,255 @@
+"""Where a sweep keeps its results: the CSV, its sidecar, its lock.
+
+* ``NAME.csv``: one row per finished point, appended (and forced to disk) as each finishes;
+  rewritten in sweep order at the end.
+* ``NAME.sweep.json`` (sidecar): the sweep's signature (parameter, values, series, model,
+  changed options, webfem version). A re-run with the same signature keeps the converged
+  rows and solves the rest; a different one starts over.
+* ``.NAME.csv.lock`` (hidden): held while a sweep writes, holding its pid, host, start time
+  and signature hash. A second sweep into the same CSV, identical or not, is refused while
+  the first runs (two writers would mix their rows); a lock whose process has ended on this
+  host is stale and taken over.
+"""
+
+from __future__ import annotations
+
+import errno
+import hashlib
+import json
+import os
+import socket
+import time
+import uuid
+from pathlib import Path
+
+from ..errors import InputError
+from .files import pid_alive, remove_stale_temps, temp_path, write_text
+from .table import ROW_KEYS, Table, format_row, read_table, write_csv
+
+__all__ = ["signature", "signature_hash", "SweepLock", "Store", "point_key"]
+
+
+def signature(spec, model: str, options) -> dict:
+    """What makes two sweeps the same sweep (JSON-ready)."""
+    from .. import __version__
+    return {"parameter": spec.parameter, "values": [float(v) for v in spec.values],
+            "model": model, "webfem": __version__,
+            "options": json.loads(json.dumps(options.changed(), sort_keys=True, default=str)),
+            "series": [[label, case.to_dict()] for label, case in spec.series]}
+
+
+def signature_hash(sig: dict) -> str:
+    text = json.dumps(sig, sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:12]
+
+
+def point_key(label, value) -> tuple[str, str]:
+    """A point's identity in the CSV: series label and the value's exact text."""
+    return str(label), repr(float(value))
+
+
+class SweepLock:
+    """The lock of one output CSV (see the module notes); a context manager.
+
+    Raises :class:`~webfem.errors.InputError` naming the sweep that holds it.
+    """
+
+    def __init__(self, csv_path: Path, sig: dict):
+        self.path = csv_path.with_name(f".{csv_path.name}.lock")
+        self.csv_path = csv_path
+        self.hash = signature_hash(sig)
+        self.info = {"pid": os.getpid(), "host": socket.gethostname(), "time": time.time(),
+                     "started": time.strftime("%Y-%m-%d %H:%M:%S"), "signature": self.hash,
+                     "model": sig["model"], "parameter": sig["parameter"],
+                     "points": len(sig["values"]) * len(sig["series"]),
+                     "token": uuid.uuid4().hex}
+        self.held = False
+
+    def _create(self) -> bool:
+        """Create the lock file whole (written aside, then hard-linked: atomic, and never
+        seen half-written); False if it exists."""
+        tmp = temp_path(self.path)
+        try:
+            write_text(tmp, json.dumps(self.info))
+            try:
+                os.link(tmp, self.path)
+            except FileExistsError:
+                return False
+            except OSError as err:   # file systems without hard links
+                if err.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP):
+                    raise
+                try:
+                    fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+                except FileExistsError:
+                    return False
+                with os.fdopen(fd, "w") as fh:
+                    fh.write(json.dumps(self.info))
+            return True
+        finally:
+            try:
+                tmp.unlink()
+            except FileNotFoundError:
+                pass
+
+    def _read(self) -> dict | None:
+        try:
+            return json.loads(self.path.read_text())
+        except FileNotFoundError:
+            return None
+        except (OSError, ValueError):
+            return {}
+
+    def _stale(self, other: dict) -> bool:
+        if not other:   # unreadable: old enough to be left by a crash?
+            try:
+                return time.time() - self.path.stat().st_mtime > 60.0
+            except OSError:
+                return True
+        if other.get("host") != self.info["host"]:
+            return False   # cannot see that host's processes
+        try:
+            return not pid_alive(int(other["pid"]), float(other.get("time", 0)) or None)
+        except (KeyError, TypeError, ValueError):
+            return True
+
+    def _take_over(self, other: dict) -> None:
+        """Remove a stale lock, unless another process has just replaced it."""
+        aside = self.path.with_name(f"{self.path.name}.stale-{os.getpid()}")
+        try:
+            os.replace(self.path, aside)
+        except FileNotFoundError:
+            return
+        try:
+            now = json.loads(aside.read_text())
+        except (OSError, ValueError):
+            now = {}
+        if now != other and now:   # a fresh lock was renamed: put it back
+            try:
+                os.link(aside, self.path)
+            except OSError:
+                pass
+        aside.unlink(missing_ok=True)
+
+    def acquire(self) -> None:
+        try:
+            for _ in range(5):
+                if self._create():
+                    self.held = True
+                    return
+                other = self._read()
+                if other is None:
+                    continue
+                if not self._stale(other):
+                    raise InputError(self._refusal(other))
+                self._take_over(other)
+        except PermissionError as err:
+            raise InputError(f"cannot write in {self.path.parent}: permission denied "
+                             f"({err.filename})") from None
+        raise InputError(f"{self.csv_path}: could not take the lock {self.path}; "
+                         "another sweep keeps taking it")
+
+    def _refusal(self, other: dict) -> str:
+        who = (f"pid {other.get('pid', '?')} on {other.get('host', '?')} since "
+               f"{other.get('started', '?')}: {other.get('model', '?')} over "
+               f"{other.get('parameter', '?')}, {other.get('points', '?')} points")
+        if other.get("signature") == self.hash:
+            return (f"{self.csv_path}: this same sweep is already running ({who}); two writers "
+                    "would mix their rows: wait for it to end, then run again to resume")
+        return (f"{self.csv_path}: another sweep is writing this file ({who}); wait for it to "
+                f"end or write elsewhere (if that process is gone, delete {self.path})")
+
+    def release(self) -> None:
+        if not self.held:
+            return
+        self.held = False
+        if (self._read() or {}).get("token") == self.info["token"]:
+            self.path.unlink(missing_ok=True)
+
+    def __enter__(self):
+        self.acquire()
+        return self
+
+    def __exit__(self, *exc):
+        self.release()
+
+
+class Store:
+    """The CSV and sidecar of one sweep: which points are done, appending new rows, and the
+    final rewrite in sweep order."""
+
+    def __init__(self, csv_path: Path, sig: dict):
+        self.csv_path = csv_path
+        self.sidecar = csv_path.with_suffix(".sweep.json")
+        self.sig = sig
+        self._fd: int | None = None
+
+    def check_paths(self) -> None:
+        """Input errors for outputs that cannot be written, before anything runs."""
+        for path, what in ((self.csv_path, "the sweep CSV"), (self.sidecar, "the sidecar")):
+            if path.is_dir():
+                raise InputError(f"{what} {path} is a folder; it must be a file path")
+        parent = self.csv_path.parent
+        try:
+            parent.mkdir(parents=True, exist_ok=True)
+        except (FileExistsError, NotADirectoryError):
+            raise InputError(f"cannot create the folder {parent}: a file is in the way") \
+                from None
+        except PermissionError:
+            raise InputError(f"cannot create the folder {parent}: permission denied") from None
+        if not os.access(parent, os.W_OK | os.X_OK):
+            raise InputError(f"cannot write in {parent}: permission denied")
+
+    def load(self, keys: dict) -> dict[int, dict]:
+        """Converged rows of an earlier run of the same sweep, by point index (``keys``:
+        point key -> index); {} when there is none or the sweep changed."""
+        remove_stale_temps(self.csv_path.parent, self.csv_path.name)
+        remove_stale_temps(self.sidecar.parent, self.sidecar.name)
+        try:
+            same = json.loads(self.sidecar.read_text()) == json.loads(json.dumps(self.sig))
+            table = read_table(self.csv_path) if same else Table()
+        except (OSError, ValueError):
+            return {}
+        if table.header != list(ROW_KEYS):
+            return {}
+        done = {}
+        for row in table.rows:   # the last row of a point wins
+            index = keys.get(point_key(row["series"], row["value"]))
+            if index is not None:
+                done[index] = row
+        return {i: r for i, r in done.items() if r["converged"] == "True"}
+
+    def start(self, kept: dict[int, dict]) -> None:
+        """Write the CSV afresh with the ``kept`` rows (a clean file: a torn last line or
+        rows that did not parse are gone), then the sidecar, and open for appending."""
+        if not kept:   # a new sweep: the old sidecar goes first, so old rows never match it
+            self.sidecar.unlink(missing_ok=True)
+        write_csv([kept[i] for i in sorted(kept)], self.csv_path, ROW_KEYS)
+        write_text(self.sidecar, json.dumps(self.sig, indent=1))
+        self._fd = os.open(self.csv_path, os.O_WRONLY | os.O_APPEND)
+
+    def append(self, row: dict) -> None:
+        """Append one row with a single write and force it to disk."""
+        data = format_row(row).encode("utf-8")
+        while data:
+            data = data[os.write(self._fd, data):]
+        os.fsync(self._fd)
+
+    def close(self) -> None:
+        if self._fd is not None:
+            os.close(self._fd)
+            self._fd = None
+
+    def finish(self, keys: dict) -> list[dict]:
+        """Rewrite the CSV with the latest row of every point, in sweep order; returns them
+        (strings as in the file)."""
+        self.close()
+        table = read_table(self.csv_path)
+        latest = {}
+        for row in table.rows:
+            index = keys.get(point_key(row["series"], row["value"]))
+            if index is not None:
+                latest[index] = row
+        rows = [latest[i] for i in sorted(latest)]
+        write_csv(rows, self.csv_path, ROW_KEYS)
+        return rows
+

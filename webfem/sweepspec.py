@@ -1,0 +1,293 @@
+"""Sweep specifications: one swept case key, its values, and the series (curve families).
+
+A :class:`Sweep` is checked on creation, like a :class:`~webfem.case.Case`: the swept key
+is a numeric case key, the values are distinct finite numbers, the series labels are
+distinct non-empty text, and every point is a valid case, so a long sweep never fails half
+way on its input. Sizes are bounded: at most :data:`MAX_VALUES` values per series,
+:data:`MAX_SERIES` series and :data:`MAX_POINTS` points in all (each point is a solve).
+
+Examples
+--------
+>>> from webfem.case import Case
+>>> s = Sweep("roller.speed", (1.0, 4.0), (("base", Case()),))
+>>> s.respaced(3, log=True).values
+(1.0, 2.0, 4.0)
+>>> s.respaced(2.7)
+Traceback (most recent call last):
+...
+webfem.errors.InputError: --num = 2.7 is not a whole number: must be an integer from 1 to 10000
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import numbers
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterator
+
+import numpy as np
+
+from .case import Case, _case_from_tables, _read_toml
+from .errors import InputError
+from .sections import _SECTIONS, _flatten, _is_key, _show, _unknown, valid_keys
+
+__all__ = ["MAX_POINTS", "MAX_SERIES", "MAX_VALUES", "Sweep", "load_sweep"]
+
+#: Most values per series (``values``, ``num``, ``--num``).
+MAX_VALUES = 10_000
+#: Most ``[[series]]`` per sweep.
+MAX_SERIES = 100
+#: Most points (values x series) per sweep: each point is one solve.
+MAX_POINTS = 100_000
+
+_KEYS = ("parameter", "values", "start", "stop", "num", "spacing")
+_DEFAULT_NUM = 40
+
+
+def _numeric(key: str) -> bool:
+    section, name = key.split(".", 1)
+    meta = {f.name: f.metadata for f in dataclasses.fields(_SECTIONS[section])}[name]
+    return "choices" not in meta
+
+
+def _count(name: str, value: Any, where: str = "") -> int:
+    """A number of points: a true integer from 1 to MAX_VALUES (2.7, "8", True refused)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{name} = {_show(value)}{where} is not a whole number: "
+                         f"must be an integer from 1 to {MAX_VALUES}")
+    if not 1 <= value <= MAX_VALUES:
+        raise InputError(f"{name} = {_show(value)}{where} is out of range: "
+                         f"must be from 1 to {MAX_VALUES} (points per series)")
+    return int(value)
+
+
+def _finite(name: str, value: Any, where: str = "") -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise InputError(f"{name} = {_show(value)}{where} is not a number: "
+                         "must be a finite number")
+    try:
+        x = float(value)
+    except OverflowError:
+        x = math.inf
+    if not math.isfinite(x):
+        raise InputError(f"{name} = {_show(value)}{where} is out of range: "
+                         "must be a finite number")
+    return x
+
+
+def _check_parameter(parameter: Any, where: str = "") -> None:
+    if not isinstance(parameter, str):
+        raise InputError(f"sweep.parameter = {_show(parameter)}{where} is not valid: "
+                         "must be a case key such as 'roller.speed'")
+    if not _is_key(parameter):
+        raise _unknown(parameter, where + " (sweep.parameter)")
+    if not _numeric(parameter):
+        raise InputError(f"sweep.parameter = {parameter!r}{where} is not a numeric key: "
+                         "a sweep varies a number; numeric keys: "
+                         + ", ".join(k for k in valid_keys() if _numeric(k)))
+
+
+def _check_values(values: Any) -> tuple[float, ...]:
+    if isinstance(values, np.ndarray) and values.ndim == 1:
+        values = values.tolist()
+    if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
+        raise InputError(f"sweep.values = {_show(values)} is not a list of numbers: "
+                         f"write e.g. values = [1.0, 2.5, 5.0] (1 to {MAX_VALUES} numbers)")
+    if not 1 <= len(values) <= MAX_VALUES:
+        raise InputError(f"sweep.values holds {len(values)} numbers: "
+                         f"must hold 1 to {MAX_VALUES}")
+    out, seen = [], set()
+    for i, v in enumerate(values):
+        x = _finite(f"sweep.values item {i + 1}", v, f" (of {_show(values)})")
+        if x in seen:
+            raise InputError(f"sweep.values holds {x:g} twice: each value may appear once "
+                             "(results are keyed by series and value)")
+        seen.add(x)
+        out.append(x)
+    return tuple(out)
+
+
+def _check_series(series: Any) -> tuple[tuple[str, Case], ...]:
+    if isinstance(series, (str, bytes)) or not isinstance(series, Sequence):
+        raise InputError(f"series = {_show(series)} is not valid: "
+                         "must be a list of (label, Case) pairs")
+    if not 1 <= len(series) <= MAX_SERIES:
+        raise InputError(f"a sweep has {len(series)} series: must have 1 to {MAX_SERIES}")
+    out, first = [], {}
+    for i, entry in enumerate(series, 1):
+        if not (isinstance(entry, Sequence) and len(entry) == 2):
+            raise InputError(f"series {i} = {_show(entry)} is not a (label, Case) pair")
+        label, case = entry
+        if not isinstance(label, str) or not label.strip():
+            raise InputError(f"series label = {_show(label)} (series {i}) is not valid: "
+                             "must be non-empty text")
+        if label in first:
+            raise InputError(f"series label '{label}' is used twice (series {first[label]} "
+                             f"and {i}): labels must be unique (results are keyed by label)")
+        if not isinstance(case, Case):
+            raise InputError(f"series '{label}' holds {_show(case)}: "
+                             "must hold a webfem.case.Case")
+        first[label] = i
+        out.append((label, case))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A parameter sweep: one swept dotted key and one or more curve families (series).
+
+    TOML::
+
+        [sweep]
+        parameter = "roller.speed"
+        start = 0.5
+        stop = 40.0
+        num = 60            # or: values = [1, 2, 5]; spacing = "linear" | "log"
+
+        [[series]]
+        label = "B = 20 deg"
+        wrap = { angle_deg = 20 }
+    """
+
+    parameter: str
+    values: tuple[float, ...]
+    series: tuple[tuple[str, Case], ...]
+
+    def __post_init__(self):
+        _check_parameter(self.parameter)
+        values, series = _check_values(self.values), _check_series(self.series)
+        if len(values) * len(series) > MAX_POINTS:
+            raise InputError(f"the sweep has {len(values)} values x {len(series)} series = "
+                             f"{len(values) * len(series)} points: at most {MAX_POINTS}")
+        object.__setattr__(self, "values", values)
+        object.__setattr__(self, "series", series)
+        for label, base in series:  # every point now, so a long sweep never fails half way
+            for value in values:
+                try:
+                    base.updated({self.parameter: value})
+                except InputError as err:
+                    raise InputError(f"{err} (series '{label}', {self.parameter} = "
+                                     f"{value:g})") from None
+
+    def points(self) -> Iterator[tuple[str, float, Case]]:
+        """Yield ``(series_label, value, case)`` for every point of every series."""
+        for label, base in self.series:
+            for value in self.values:
+                yield label, value, base.updated({self.parameter: value})
+
+    def respaced(self, num: int | None, log: bool = False) -> "Sweep":
+        """The same range (smallest to largest value) in ``num`` points, evenly spaced, or
+        evenly in the logarithm with ``log``; ``num=None`` keeps the values (``log``
+        then is an error: the command line's ``--log`` needs ``--num``).
+
+        >>> from webfem.case import Case
+        >>> Sweep("roller.speed", (2.0, 1.0), (("a", Case()),)).respaced(3).values
+        (1.0, 1.5, 2.0)
+        """
+        if num is None:
+            if log:
+                raise InputError("--log needs --num: give the number of log-spaced points "
+                                 f"(1 to {MAX_VALUES})")
+            return self
+        num = _count("--num", num)
+        lo, hi = min(self.values), max(self.values)
+        if log and lo <= 0:
+            raise InputError(f"--log needs values > 0: the sweep spans {self.parameter} = "
+                             f"{lo:g} .. {hi:g}; use linear spacing or a range above 0")
+        if lo == hi and num > 1:
+            raise InputError(f"--num = {num}: the sweep has the one value {self.parameter} = "
+                             f"{lo:g}, no range to fill; give start and stop in [sweep]")
+        space = np.geomspace if log else np.linspace
+        return dataclasses.replace(self, values=tuple(space(lo, hi, num).tolist()))
+
+
+def _values_from_spec(spec: Mapping[str, Any], where: str) -> Any:
+    """The values a ``[sweep]`` table asks for (a list, checked by Sweep, or a range)."""
+    if "values" in spec:
+        extra = [k for k in ("start", "stop", "num", "spacing") if k in spec]
+        if extra:
+            raise InputError(f"sweep.values and sweep.{extra[0]}{where} cannot be combined: "
+                             "give values, or start and stop (with num and spacing)")
+        return spec["values"]
+    if "start" not in spec or "stop" not in spec:
+        raise InputError(f"[sweep]{where} needs 'values' or 'start' and 'stop'")
+    start = _finite("sweep.start", spec["start"], where)
+    stop = _finite("sweep.stop", spec["stop"], where)
+    num = _count("sweep.num", spec.get("num", _DEFAULT_NUM), where)
+    spacing = spec.get("spacing", "linear")
+    if spacing not in ("linear", "log"):
+        raise InputError(f"sweep.spacing = {_show(spacing)}{where} is not valid: "
+                         "must be 'linear' or 'log'")
+    if spacing == "log" and min(start, stop) <= 0:
+        raise InputError(f"sweep.spacing = 'log'{where} needs start and stop > 0, got "
+                         f"sweep.start = {start:g}, sweep.stop = {stop:g}: "
+                         "use spacing = 'linear' or a range above 0")
+    if start == stop and num > 1:
+        raise InputError(f"sweep.start = sweep.stop = {start:g}{where}: {num} equal points; "
+                         "use num = 1 or different start and stop")
+    space = np.geomspace if spacing == "log" else np.linspace
+    return space(start, stop, num).tolist()
+
+
+def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
+    if not isinstance(entries, list) or not all(isinstance(e, Mapping) for e in entries):
+        raise InputError(f"series = {_show(entries)}{where} is not valid: must be [[series]] "
+                         "tables (label = \"...\" and the case keys that differ)")
+    if len(entries) > MAX_SERIES:
+        raise InputError(f"[[series]]{where}: {len(entries)} tables, at most {MAX_SERIES}")
+    series = []
+    for i, entry in enumerate(entries, 1):
+        entry = dict(entry)
+        label = entry.pop("label", f"series {i}")
+        if not isinstance(label, str) or not label.strip():
+            raise InputError(f"series label = {_show(label)}{where} (series {i}) is not "
+                             "valid: must be non-empty text")
+        at = f"{where} (series '{label}')"
+        flat = _flatten(entry, at)
+        if parameter in flat:
+            raise InputError(f"{parameter} = {_show(flat[parameter])}{at}: {parameter} is the "
+                             "swept parameter, set at every point; remove it from the series")
+        try:
+            series.append((label, case.updated(flat)))
+        except InputError as err:
+            raise InputError(f"{err}{at}") from None
+    return series or [("base", case)]
+
+
+def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
+                     overrides: Mapping[str, Any] | None = None) -> Sweep:
+    spec = data.get("sweep", {})
+    if not isinstance(spec, Mapping):
+        raise InputError(f"sweep = {_show(spec)}{where} is not valid: must be a [sweep] "
+                         "table (parameter, then values or start, stop, num, spacing)")
+    for key in spec:
+        if key not in _KEYS:
+            close = difflib.get_close_matches(key, _KEYS, n=1)
+            hint = f"; did you mean '{close[0]}'?" if close else "; valid: " + ", ".join(_KEYS)
+            raise InputError(f"unknown key 'sweep.{key}'{where}{hint}")
+    parameter = spec.get("parameter", "roller.speed")
+    _check_parameter(parameter, where)
+    if overrides and parameter in overrides:
+        raise InputError(f"--set {parameter} = {_show(overrides[parameter])}: {parameter} is "
+                         f"the swept parameter{where}, set at every point; change [sweep] "
+                         "instead")
+    if "sweep" in data:
+        values = _values_from_spec(spec, where)
+    else:  # default: the paper's speed range
+        values = np.linspace(0.5, 40.0, 60).tolist()
+    series = _series_from_tables(case, data.get("series", []), parameter, where)
+    try:
+        return Sweep(parameter, values, tuple(series))
+    except InputError as err:
+        raise InputError(f"{err}{where}") from None
+
+
+def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Sweep:
+    """Read a case TOML file with its ``[sweep]`` and ``[[series]]`` tables."""
+    data, where = _read_toml(path)
+    case = _case_from_tables(data, where, overrides)
+    return _sweep_from_dict(case, data, where, overrides)
