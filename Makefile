@@ -50,8 +50,10 @@ figures: $(STAMP)
 	    --out docs/figures --quiet || exit 1; done
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
 	  --chart docs/figures --points 4 --quiet
-	$(PY) -m webfem.studies.variants --out docs/figures --model $(FIG_MODEL)
+	$(VENV)/bin/webfem study variants cases/base.toml --out docs/figures --model $(FIG_MODEL)
 
-# the three studies and docs/studies.md from their numbers (about 20 minutes on 2 cores)
+# the three studies and docs/studies.md from their numbers, then Eq. 21 over lambda
+# (docs/lambda_table.md) (about 20 minutes on 2 cores)
 studies: $(STAMP)
-	$(PY) -m webfem.studies.report --out docs --case cases/base.toml
+	$(VENV)/bin/webfem study report cases/base.toml --out docs
+	$(VENV)/bin/webfem study lambda-table cases/base.toml --out docs

@@ -50,8 +50,10 @@ def test_every_case_file_sweeps(case, tmp_path, capsys):
 
 
 def test_base_case_shows_paper_trend(tmp_path):
-    """The base case rises to about 0.3 at low speed, falls through mixed, ends below 0.03."""
-    main(["sweep", "cases/base.toml", "--out", str(tmp_path), "--quiet"])
+    """With the paper's physics the base case rises to about 0.3 at low speed, falls
+    through mixed, ends below 0.03."""
+    main(["sweep", "cases/base.toml", "--out", str(tmp_path), "--quiet", "--set",
+          "model.physics=paper"])
     rows = list(csv.DictReader((tmp_path / "base_closed-form.csv").open()))
     mu = [float(r["mu"]) for r in rows]
     speed = [float(r["value"]) for r in rows]

@@ -26,7 +26,7 @@ def test_mesh_file_is_used(capsys):
     a = webfem.solve(Case(), model="fe1d", mesh="meshes/base_web.vtu")
     b = webfem.solve(Case(), model="fe1d")
     assert a["h_center"] == pytest.approx(b["h_center"], rel=1e-9)
-    assert a["mesh"].startswith("user line")
+    assert a["mesh"].startswith("user mesh")
 
 
 def test_mesh_not_covering_the_wrap(tmp_path):
@@ -44,11 +44,14 @@ def test_validity_warnings():
     with pytest.warns(ValidityWarning, match="outside Eq. 21"):
         webfem.solve(Case().updated({"roller.speed": 40.0, "web.width": 0.02}))
     with pytest.warns(ValidityWarning, match="incompressible film"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.tension": 200.0}),
+        webfem.solve(Case().updated({"roller.speed": 40.0, "web.tension": 150.0}),
                      model="fe1d", compressible=False)
+    with pytest.warns(ValidityWarning, match="closed form leaves out bending"):
+        webfem.solve(Case().updated({"roller.speed": 40.0}))
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
-        r = webfem.solve(Case().updated({"roller.speed": 40.0}))   # inside every range
+        r = webfem.solve(Case().updated({"roller.speed": 40.0,     # inside every range
+                                         "model.physics": "paper"}))
     assert list(r["warnings"]) == []
 
 

@@ -2,10 +2,11 @@
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from webfem import Case
+from webfem.case import valid_keys
 from webfem.models import closed, fe1d, fe2d
 from webfem.physics.contact import load_ratio
 from webfem.physics.friction import local_friction, mu_film
@@ -21,8 +22,7 @@ points = st.fixed_dictionaries({
 @given(points, st.floats(1.01, 3.0))
 def test_closed_form_gap_grows_with_speed_and_falls_with_tension(values, factor):
     case = Case().updated(values)
-    if not (case.lam > 7 and case.beta > 6):
-        return
+    assume(case.lam > 7 and case.beta > 6)   # Eq. 21's stated range
     base = closed.solve(case)
     faster = case.updated({"roller.speed": case.roller.speed * factor})
     tighter = case.updated({"web.tension": case.web.tension * factor})
@@ -43,19 +43,40 @@ def test_load_ratio_and_friction_bounds(h, p_bar, U_s, variant):
     assert 0.0 <= loc["mu"][0] <= bound + 1e-15
 
 
+#: Dimension of every dimensional case key as exponents of (length, mass, time).
+DIMENSIONS = {
+    "roller.radius": (1, 0, 0), "roller.speed": (1, 0, -1), "roller.roughness": (1, 0, 0),
+    "roller.drag_torque": (2, 1, -2), "roller.inertia": (2, 1, 0),
+    "web.width": (1, 0, 0), "web.tension": (0, 1, -2), "web.speed": (1, 0, -1),
+    "web.thickness": (1, 0, 0), "web.modulus_thickness": (-1, 1, -2),
+    "web.modulus_md": (-1, 1, -2), "web.roughness": (1, 0, 0), "web.permeability": (2, 0, 0),
+    "web.bending_stiffness": (2, 1, -2), "web.density": (-3, 1, 0),
+    "web.acceleration": (1, 0, -2),
+    "air.viscosity": (-1, 1, -1), "air.ambient_pressure": (-1, 1, -2),
+    "air.mean_free_path": (1, 0, 0),
+    "friction.speed_constant": (1, 0, -1),
+}
+#: Numeric keys without a unit.
+DIMENSIONLESS = {"wrap.angle_deg", "friction.mu_cc"}
+
+
+def test_every_numeric_key_has_a_dimension():
+    """A new dimensional key must join DIMENSIONS, or the unit tests below miss it."""
+    case = Case()
+    for key in valid_keys():
+        value = case.get(key)
+        if value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
+            assert key in DIMENSIONS or key in DIMENSIONLESS, key
+
+
 def rescale(case: Case, length: float, mass: float, time: float) -> Case:
-    """The same physical case in other units: lengths x length, masses x mass, times x time
-    (a value in unit u becomes value / u_new ...; here simply its dimension's factor)."""
-    L, M, T = length, mass, time
-    f = {  # dimension of each key as L^a M^b T^c
-        "roller.radius": L, "roller.speed": L / T, "roller.roughness": L,
-        "web.width": L, "web.tension": M / T**2, "web.speed": L / T, "web.thickness": L,
-        "web.modulus_thickness": M / (L * T**2), "web.modulus_md": M / (L * T**2),
-        "web.roughness": L, "web.permeability": L**2, "web.bending_stiffness": M * L**2 / T**2,
-        "air.viscosity": M / (L * T), "air.ambient_pressure": M / (L * T**2),
-        "friction.speed_constant": L / T,
-    }
-    return case.updated({k: case.get(k) * v for k, v in f.items()})
+    """The same physical case in other units: each dimensional key times
+    length^a mass^b time^c for its dimension (a, b, c); unset keys (None) stay unset."""
+    changes = {}
+    for key, (a, b, c) in DIMENSIONS.items():
+        if key in valid_keys() and case.get(key) is not None:
+            changes[key] = case.get(key) * length**a * mass**b * time**c
+    return case.updated(changes)
 
 
 units = st.tuples(st.floats(1e-3, 1e3), st.floats(1e-3, 1e3), st.floats(1e-3, 1e3))

@@ -24,9 +24,10 @@ from webfem.models import registry
 from webfem.sweeps import SweepInterrupted, run
 
 ROOT = Path(__file__).resolve().parents[1]
-SWEEP = '[sweep]\nparameter = "roller.speed"\nvalues = [30.0, 32.0, 34.0, 36.0, 38.0, 40.0, 42.0, 44.0]\n' \
-        '[[series]]\nlabel = "T = 80"\nweb = { tension = 80.0 }\n' \
-        '[[series]]\nlabel = "T = 120"\nweb = { tension = 120.0 }\n'
+SWEEP = ('[sweep]\nparameter = "roller.speed"\n'
+         'values = [30.0, 32.0, 34.0, 36.0, 38.0, 40.0, 42.0, 44.0]\n'
+         '[[series]]\nlabel = "T = 80"\nweb = { tension = 80.0 }\n'
+         '[[series]]\nlabel = "T = 120"\nweb = { tension = 120.0 }\n')
 
 
 def small(values=(30.0, 34.0, 38.0), labels=("T = 80", "T = 120")):
@@ -89,7 +90,6 @@ def test_processes_equal_serial(serial, tmp_path):
     assert_same(rows, serial)
 
 
-@pytest.mark.slow
 def test_dask_local_cluster_equals_serial(serial, tmp_path):
     pytest.importorskip("distributed")
     rows = run(small(), "fe1d", tmp_path / "dask" / "s.csv", workers=2, dask="local")
@@ -121,9 +121,9 @@ def test_bad_arguments_refused_before_anything_runs(tmp_path):
         run(small(), "closed-form", tmp_path / "d.csv")
 
 
-@pytest.mark.slow
-def test_unreachable_scheduler_is_one_line(tmp_path):
+def test_unreachable_scheduler_is_one_line(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
+    monkeypatch.setattr("webfem.sweeps.workers.DASK_TIMEOUT_S", 2)
     with pytest.raises(InputError, match="no Dask scheduler answered") as err:
         run(small(), "fe1d", tmp_path / "s.csv", dask="tcp://127.0.0.1:1")
     assert "\n" not in str(err.value)
@@ -219,14 +219,16 @@ def test_torn_last_line_and_bad_rows_are_solved_again(serial, tmp_path):
     out = tmp_path / "s.csv"
     run(small(), "fe1d", out)
     lines = out.read_text().splitlines(keepends=True)
-    bad_number = lines[2].replace(",True,", ",True,", 1).split(",")
+    bad_number = lines[2].split(",")
     bad_number[5] = "0.0x1"                       # h_inlet
+    no_value = lines[3].split(",")
+    no_value[2] = ""
     torn = lines[-1][: len(lines[-1]) // 2]       # no newline: cut by the kill
-    out.write_text(lines[0] + lines[1] + ",".join(bad_number) + lines[3] + lines[4]
+    out.write_text(lines[0] + lines[1] + ",".join(bad_number) + ",".join(no_value) + lines[4]
                    + lines[5].rstrip("\n") + ",extra,fields\n" + torn)
     calls, progress = counter()
     rows = run(small(), "fe1d", out, progress=progress)
-    assert len(calls) == 3                        # bad number, extra fields, torn line
+    assert len(calls) == 4                        # bad number, no value, extra fields, torn
     assert_same(rows, serial)
     with out.open(newline="") as fh:
         assert len(list(csv.DictReader(fh))) == 6   # clean: no None field
@@ -267,6 +269,9 @@ def test_lock_of_an_ended_process_is_taken_over(tmp_path):
                     % (dead, os.uname().nodename))
     assert len(run(small(values=(20.0,)), "closed-form", out)) == 2
     assert not lock.exists()
+    lock.write_text('{"pid": %d, "host": "%s", "time": 0, "token": "left behind"}'
+                    % (os.getpid(), os.uname().nodename))   # e.g. by a Ctrl-C while taken
+    assert len(run(small(values=(20.0,)), "closed-form", out)) == 2
     lock.write_text('{"pid": 1, "host": "elsewhere", "time": 0, "signature": "x"}')
     with pytest.raises(InputError, match=r"pid 1 on elsewhere.*delete .*\.s\.csv\.lock"):
         run(small(values=(20.0,)), "closed-form", out)

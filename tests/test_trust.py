@@ -15,6 +15,8 @@ from webfem.errors import ConvergenceError, InputError, ValidityWarning
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
 BASE = Case()
+#: The paper's model, in which the issue's branch-jumping cases were found.
+PAPER = Case().updated({"model.physics": "paper"})
 
 
 def _outcome(case, model):
@@ -54,9 +56,9 @@ def test_fe1d_continuation_never_jumps_branch():
     before; now it equals the cold start (the continued start ends inadmissible, the driver
     starts again cold)."""
     for a, b in [(2.0, 10.0), (3.0, 14.0), (5.0, 10.0), (7.0, 14.0)]:
-        start = webfem.solve(BASE.updated({"roller.speed": a}), model="fe1d")
-        cont = webfem.solve(BASE.updated({"roller.speed": b}), model="fe1d", initial=start)
-        cold = webfem.solve(BASE.updated({"roller.speed": b}), model="fe1d")
+        start = webfem.solve(PAPER.updated({"roller.speed": a}), model="fe1d")
+        cont = webfem.solve(PAPER.updated({"roller.speed": b}), model="fe1d", initial=start)
+        cold = webfem.solve(PAPER.updated({"roller.speed": b}), model="fe1d")
         assert cont["h_min"] > 0.0
         assert cont["h_min"] == pytest.approx(cold["h_min"], rel=1e-6)
         assert cont["mu"] == pytest.approx(cold["mu"], rel=1e-6)
@@ -64,17 +66,18 @@ def test_fe1d_continuation_never_jumps_branch():
 
 def test_fe2d_continuation_5_to_10():
     """fe2d in a sweep 5 -> 10 m/s gave h_min = -3.18 um (cold: 4.48 um)."""
-    start = webfem.solve(BASE.updated({"roller.speed": 5.0}), model="fe2d")
-    cont = webfem.solve(BASE.updated({"roller.speed": 10.0}), model="fe2d", initial=start)
-    cold = webfem.solve(BASE.updated({"roller.speed": 10.0}), model="fe2d")
+    start = webfem.solve(PAPER.updated({"roller.speed": 5.0}), model="fe2d")
+    cont = webfem.solve(PAPER.updated({"roller.speed": 10.0}), model="fe2d", initial=start)
+    cold = webfem.solve(PAPER.updated({"roller.speed": 10.0}), model="fe2d")
     assert cont["h_min"] == pytest.approx(cold["h_min"], rel=1e-6)
     assert 4e-6 < cold["h_min"] < 5e-6
 
 
-def test_low_speed_answers_do_not_depend_on_the_path():
+@pytest.mark.parametrize("base", [PAPER, BASE], ids=["paper", "full"])
+def test_low_speed_answers_do_not_depend_on_the_path(base):
     """A landed web sits within round-off of h_c, on Eq. 29's jump: the boundary regime is
     where contact carries >= 99.9 % of T/R, so forward, backward and cold solves agree."""
-    cases = [BASE.updated({"roller.speed": u}) for u in np.linspace(0.5, 5.0, 6)]
+    cases = [base.updated({"roller.speed": u}) for u in np.linspace(0.5, 5.0, 6)]
     forward = [r["mu"] for r in solve_along(cases, "fe1d")]
     backward = [r["mu"] for r in solve_along(cases[::-1], "fe1d")][::-1]
     cold = [webfem.solve(c, model="fe1d")["mu"] for c in cases]

@@ -8,10 +8,13 @@ Public face: :class:`Case`, :func:`load_case`, :func:`solve`, :func:`sweep`.
 ['beta', 'converged', 'delta_T']
 """
 
-from .case import Case, CaseError, load_case, load_sweep
+from .case import Case, CaseError, load_case
+from .sweepspec import Sweep, load_sweep
+from .errors import ConvergenceError, InputError, ValidityWarning
 from .result import Result, SUMMARY_KEYS
-from .api import MODELS, solve, sweep
+from .api import MODELS, solve, solve_along, sweep
 
-__all__ = ["Case", "CaseError", "load_case", "load_sweep", "Result", "SUMMARY_KEYS", "MODELS",
-           "solve", "sweep"]
+__all__ = ["Case", "CaseError", "InputError", "ConvergenceError", "ValidityWarning",
+           "load_case", "load_sweep", "Sweep", "Result", "SUMMARY_KEYS", "MODELS", "solve",
+           "solve_along", "sweep"]
 __version__ = "0.1.0"

@@ -18,7 +18,8 @@ from __future__ import annotations
 import warnings
 from typing import Callable, Iterable, Iterator
 
-from .case import Case, Sweep
+from .case import Case
+from .sweepspec import Sweep
 from .errors import ConvergenceError, ValidityWarning
 from .models.options import Options
 from .models.registry import MODELS, make_options, model_spec

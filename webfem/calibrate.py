@@ -192,16 +192,18 @@ def read_measurements(path) -> list[dict]:
     return rows
 
 
-def _wrap_samples(result) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Gap at the wrap's quadrature points, weights summing to 1, and whether the gap was
-    solved (FE: the web rests on its asperities, :func:`friction_for`'s ``resting``)."""
-    if "wrap_h" in result.diagnostics:
-        return result.diagnostics["wrap_h"], result.diagnostics["wrap_w"], True
+def _wrap_samples(result) -> tuple:
+    """Gap at the wrap's quadrature points, weights summing to 1, whether the gap was
+    solved (FE: the web rests on its asperities, :func:`friction_for`'s ``resting``), and
+    the film pressure and its gradient there (None for the closed form)."""
+    d = result.diagnostics
+    if "wrap_h" in d:
+        return d["wrap_h"], d["wrap_w"], True, d.get("wrap_p"), d.get("wrap_dpdx")
     # closed form: the gap is linear; a fine Gauss rule over its fields is ample
     x, h = result.fields["x"], result.fields["h"]
     g, w = np.polynomial.legendre.leggauss(400)
     s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
-    return np.interp(s, x, h), 0.5 * w, False
+    return np.interp(s, x, h), 0.5 * w, False, None, None
 
 
 def _identifiability(J: np.ndarray, p: np.ndarray, obs: np.ndarray, names) -> dict:
@@ -302,17 +304,18 @@ def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
         if model == "closed-form":
             arr = case_arrays([c.updated({"web.roughness": sigma}) for c in cases])
             arr.update(mu_cc=mu_cc, C=C)
-            mu = evaluate(**arr, variant=case.friction.variant,
+            mu = evaluate(**arr, variant=case.friction_variant,
                           distribution=case.friction.distribution)["mu"]
         else:
             mu = np.empty(len(cases))
-            for i, (c, (h, w, resting)) in enumerate(zip(cases, gap_samples(sigma))):
+            for i, (c, (h, w, resting, p, dpdx)) in enumerate(zip(cases,
+                                                                  gap_samples(sigma))):
                 c = c.updated({"web.roughness": sigma, "friction.mu_cc": mu_cc,
                                "friction.speed_constant": C})
-                mu[i] = np.sum(friction_for(c, h, resting)["mu"] * w)
+                mu[i] = np.sum(friction_for(c, h, resting, p, dpdx)["mu"] * w)
         if measured == "mu":
             return np.asarray(mu, float)
-        return np.array([delta_T_from_mu(m, c.web.tension, c.B) for m, c in zip(mu, cases)])
+        return np.array([delta_T_from_mu(m, c.tension_eff, c.B) for m, c in zip(mu, cases)])
 
     start = np.array(x0 if x0 is not None else
                      [case.friction.mu_cc, case.friction.speed_constant]

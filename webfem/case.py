@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping
 
 from .errors import CaseError, InputError  # CaseError: InputError's old name
-from .sections import (_KEYS, _SECTIONS, Air, Friction, Roller, Web, Wrap, _flatten,
+from .sections import (_KEYS, _SECTIONS, Air, Friction, Model, Roller, Web, Wrap, _flatten,
                        _is_key, _show, _unknown, valid_keys)
 
 __all__ = [
@@ -40,6 +40,7 @@ __all__ = [
     "CaseError",
     "InputError",
     "Friction",
+    "Model",
     "Roller",
     "Sweep",
     "Web",
@@ -47,6 +48,7 @@ __all__ = [
     "load_case",
     "load_sweep",
     "parse_assignment",
+    "valid_keys",
 ]
 
 # `Sweep` and `load_sweep` live in webfem.sweepspec (a layer above Case); they stay
@@ -82,6 +84,7 @@ class Case:
     wrap: Wrap = field(default_factory=Wrap)
     air: Air = field(default_factory=Air)
     friction: Friction = field(default_factory=Friction)
+    model: Model = field(default_factory=Model)
 
     def __post_init__(self):
         for name, cls in _SECTIONS.items():
@@ -90,6 +93,14 @@ class Case:
         if self.roller.speed + self.web.speed <= 0.0:
             raise CaseError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
                             "[m/s] (no air is entrained otherwise)")
+        if self.tension_eff <= 0.0:
+            w = self.web
+            raise CaseError(
+                f"web.speed = {w.speed:g} m/s: the web cannot be held on the roller at that "
+                f"speed: turning it takes rho_w t U_w^2 = {self.web_inertia:.4g} N/m, at least "
+                f"its tension web.tension = {w.tension:g} N/m (raise the tension above "
+                f"{self.web_inertia:.4g} N/m or lower web.speed below "
+                f"{math.sqrt(w.tension / (w.density * w.thickness)):.4g} m/s)")
 
     # -- construction -------------------------------------------------------------------
     @classmethod
@@ -133,7 +144,8 @@ class Case:
         for name, table in self.to_dict().items():
             lines.append(f"[{name}]")
             for key, value in table.items():
-                lines.append(f"{key} = {_toml_value(value)}")
+                if value is not None:   # an absent key (e.g. D from the material)
+                    lines.append(f"{key} = {_toml_value(value)}")
             lines.append("")
         return "\n".join(lines)
 
@@ -153,10 +165,57 @@ class Case:
         """Wrap angle [rad]."""
         return math.radians(self.wrap.angle_deg)
 
+    # -- which physics ---------------------------------------------------------------------
+    @property
+    def paper_physics(self) -> bool:
+        """True when ``model.physics = "paper"``: Hashimoto's model exactly."""
+        return self.model.physics == "paper"
+
+    @property
+    def web_inertia(self) -> float:
+        """Tension the moving web spends turning around the roller, rho_w t U_w^2 [N/m]
+        (0 with the paper's physics)."""
+        if self.paper_physics:
+            return 0.0
+        return self.web.density * self.web.thickness * self.web.speed**2
+
+    @property
+    def tension_eff(self) -> float:
+        """Effective tension T_eff = T - rho_w t U_w^2 [N/m]: what the wrap pressure, the
+        web equation, the scaling and the belt formula see."""
+        return self.web.tension - self.web_inertia
+
+    @property
+    def bending_used(self) -> float:
+        """Bending stiffness D the models use [N m]: ``web.bending_stiffness`` when given,
+        else 0 with the paper's physics, else E_m t^3 / 12 from the material."""
+        if self.web.bending_stiffness is not None:
+            return self.web.bending_stiffness
+        if self.paper_physics:
+            return 0.0
+        return self.web.modulus_md * self.web.thickness**3 / 12.0
+
+    @property
+    def slip_model(self) -> str:
+        """Slip flow used: ``air.slip``, or "none" with the paper's physics."""
+        return "none" if self.paper_physics else self.air.slip
+
+    @property
+    def permeation_model(self) -> str:
+        """Darcy sink used: ``web.permeation``, or "paper" with the paper's physics."""
+        return "paper" if self.paper_physics else self.web.permeation
+
+    @property
+    def friction_variant(self) -> str:
+        """Friction model used: ``friction.variant``; "loads" becomes "paper" with the
+        paper's physics."""
+        v = self.friction.variant
+        return "paper" if (v == "loads" and self.paper_physics) else v
+
     @property
     def eps(self) -> float:
-        """Web speed parameter eps = 6 eta U / T (Eq. 22)."""
-        return 6.0 * self.air.viscosity * self.U / self.web.tension
+        """Web speed parameter eps = 6 eta U / T_eff (Eq. 22, with the effective tension)."""
+        return 6.0 * self.air.viscosity * self.U / self.tension_eff
 
     @property
     def lam(self) -> float:
@@ -170,15 +229,15 @@ class Case:
 
     @property
     def kappa(self) -> float:
-        """Permeability parameter kappa = k T B / (eta t R U) (Eq. 22)."""
+        """Permeability parameter kappa = k T_eff B / (eta t R U) (Eq. 22)."""
         w = self.web
-        return w.permeability * w.tension * self.B / (
+        return w.permeability * self.tension_eff * self.B / (
             self.air.viscosity * w.thickness * self.roller.radius * self.U)
 
     @property
     def p_bar(self) -> float:
-        """Wrap pressure T/R [Pa]."""
-        return self.web.tension / self.roller.radius
+        """Wrap pressure T_eff/R [Pa]."""
+        return self.tension_eff / self.roller.radius
 
     @property
     def sigma(self) -> float:

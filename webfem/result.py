@@ -145,6 +145,18 @@ class Summary(_ReadOnlyMapping):
     U_slide: float
     residual: float
     warnings: tuple[str, ...] = ()
+    #: The physics: effective tension T_eff = T - rho_w t U_w^2 [N/m], the bending stiffness
+    #: used [N m] and the effects included (:mod:`webfem.physics.effects`).
+    T_eff: float | None = None
+    bending_stiffness_used: float | None = None
+    effects: tuple[str, ...] = ()
+    #: Idler slip check (when the case states a drag torque or a line acceleration):
+    #: tension difference needed and available [N/m], their ratio, and the friction
+    #: coefficient assumed at the onset of slip.
+    delta_T_required: float | None = None
+    delta_T_available: float | None = None
+    slip_margin: float | None = None
+    mu_onset: float | None = None
     #: FE models: position of the minimum gap [m], share of the wrap load carried by
     #: asperity contact, coupling method, mesh description, cells, refinement rounds and
     #: the solver's closing message.
@@ -166,6 +178,7 @@ class Summary(_ReadOnlyMapping):
 
     def __post_init__(self):
         object.__setattr__(self, "warnings", tuple(self.warnings))
+        object.__setattr__(self, "effects", tuple(self.effects))
 
     @classmethod
     def from_mapping(cls, values: dict) -> "Summary":
@@ -248,8 +261,9 @@ class Film(_ReadOnlyMapping):
 @dataclass(frozen=True, repr=False)
 class Diagnostics(_ReadOnlyMapping):
     """How a solve went: residual ``history`` per iteration, closing ``reason``,
-    ``continuation`` steps, the ``options`` used, the wrap quadrature (``wrap_h`` [m] gaps
-    and ``wrap_w`` weights summing to 1, to re-evaluate friction), Picard's ``omegas`` and
+    ``continuation`` steps, the ``options`` used, the wrap quadrature (``wrap_h`` [m] gaps,
+    ``wrap_w`` weights summing to 1, ``wrap_p`` [Pa] absolute pressure and ``wrap_dpdx``
+    [Pa/m] its gradient, to re-evaluate friction), Picard's ``omegas`` and
     ``block_iterations``. ``solver`` holds the discrete problem and state vector (for
     continuation; dropped by :meth:`Result.slim`)."""
 
@@ -260,6 +274,8 @@ class Diagnostics(_ReadOnlyMapping):
     options: Any = None
     wrap_h: np.ndarray | None = None
     wrap_w: np.ndarray | None = None
+    wrap_p: np.ndarray | None = None
+    wrap_dpdx: np.ndarray | None = None
     omegas: tuple | None = None
     block_iterations: Any = None
     solver: dict | None = field(default=None, compare=False)

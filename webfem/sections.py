@@ -1,4 +1,4 @@
-"""The five sections of a case, validated on creation, and the dotted keys that name them.
+"""The six sections of a case, validated on creation, and the dotted keys that name them.
 
 Each section is a frozen dataclass whose fields carry their unit and valid interval (or
 their valid words) as metadata; :class:`webfem.case.Case` groups one of each. Import these
@@ -25,7 +25,7 @@ from typing import Any, Mapping
 
 from .errors import CaseError
 
-__all__ = ["Air", "Friction", "Roller", "Web", "Wrap", "valid_keys"]
+__all__ = ["Air", "Friction", "Model", "Roller", "Web", "Wrap", "valid_keys"]
 
 _repr = reprlib.Repr()
 _repr.maxlist = _repr.maxtuple = _repr.maxdict = 6
@@ -47,9 +47,11 @@ def _show(value: Any) -> str:
 
 
 def _num(unit: str, lo: float | None = None, hi: float | None = None,
-         lo_open: bool = True, hi_open: bool = True, doc: str = ""):
-    """Field metadata: unit and valid interval (None = unbounded)."""
-    return {"unit": unit, "lo": lo, "hi": hi, "lo_open": lo_open, "hi_open": hi_open, "doc": doc}
+         lo_open: bool = True, hi_open: bool = True, doc: str = "", absent: str = ""):
+    """Field metadata: unit and valid interval (None = unbounded); ``absent``, when given,
+    says what the key means when it is left out (its value is then None)."""
+    return {"unit": unit, "lo": lo, "hi": hi, "lo_open": lo_open, "hi_open": hi_open,
+            "doc": doc, "absent": absent}
 
 
 def _choice(*options: str, doc: str = ""):
@@ -76,6 +78,8 @@ class _Section:
             meta = f.metadata
             key = f"{self._name}.{f.name}"
             value = getattr(self, f.name)
+            if value is None and meta.get("absent"):
+                continue
             if "choices" in meta:
                 if not isinstance(value, str) or value not in meta["choices"]:
                     raise CaseError(f"{key} = {_show(value)} is not valid: must be one of "
@@ -111,6 +115,11 @@ class Roller(_Section):
                                                       doc="roller surface speed U_r"))
     roughness: float = field(default=0.6e-6, metadata=_num("m", 0.0, lo_open=False,
                                                             doc="RMS roughness sigma_r"))
+    drag_torque: float = field(default=0.0, metadata=_num(
+        "N m", 0.0, lo_open=False, doc="bearing and seal drag torque M_d of an undriven "
+        "(idler) roller; with inertia, turns on the idler slip check"))
+    inertia: float = field(default=0.0, metadata=_num(
+        "kg m^2", 0.0, lo_open=False, doc="moment of inertia J of an idler roller"))
 
 
 @dataclass(frozen=True)
@@ -119,7 +128,10 @@ class Web(_Section):
 
     ``width`` L [m], ``tension`` T [N/m], ``speed`` U_w [m/s], ``thickness`` t [m],
     ``modulus_thickness`` E_b [Pa], ``modulus_md`` E_m [Pa], RMS ``roughness`` sigma_w [m],
-    ``permeability`` k [m^2], ``bending_stiffness`` D [N m] (0 = membrane, the paper's model).
+    ``permeability`` k [m^2], ``bending_stiffness`` D [N m] (left out: E_m t^3/12 from the
+    material; 0 = membrane, the paper's model), ``density`` rho_w [kg/m^3] (the moving web's
+    inertia), ``permeation`` (the Darcy sink's density law), line ``acceleration`` [m/s^2]
+    (idler slip check).
     """
 
     _name = "web"
@@ -134,8 +146,17 @@ class Web(_Section):
     roughness: float = field(default=4.0e-6, metadata=_num("m", 0.0, doc="RMS roughness sigma_w"))
     permeability: float = field(default=5e-15, metadata=_num("m^2", 0.0, lo_open=False,
                                                              doc="Darcy permeability k"))
-    bending_stiffness: float = field(default=0.0, metadata=_num(
-        "N m", 0.0, lo_open=False, doc="bending stiffness D (0 = membrane)"))
+    bending_stiffness: float | None = field(default=None, metadata=_num(
+        "N m", 0.0, lo_open=False, doc="bending stiffness D (0 = membrane)",
+        absent="D = E_m t^3 / 12 from web.modulus_md and web.thickness"))
+    density: float = field(default=650.0, metadata=_num(
+        "kg/m^3", 0.0, lo_open=False, doc="density rho_w; the web turns at the cost of "
+        "rho_w t U_w^2 of its tension (T_eff = T - rho_w t U_w^2)"))
+    permeation: str = field(default="isothermal", metadata=_choice(
+        "isothermal", "paper", doc="Darcy sink (12 k/t) ((p + p_a)/2) (p - p_a), or the "
+        "paper's (12 k/t) p (p - p_a)"))
+    acceleration: float = field(default=0.0, metadata=_num(
+        "m/s^2", doc="line acceleration a (idler slip check: J a / R of torque)"))
 
 
 @dataclass(frozen=True)
@@ -155,6 +176,10 @@ class Air(_Section):
     viscosity: float = field(default=1.81e-5, metadata=_num("Pa s", 0.0, doc="viscosity eta"))
     ambient_pressure: float = field(default=101325.0, metadata=_num(
         "Pa", 0.0, doc="ambient pressure p_a"))
+    mean_free_path: float = field(default=65e-9, metadata=_num(
+        "m", 0.0, lo_open=False, doc="mean free path of air at p_a (65 nm at 1 atm, 23 C)"))
+    slip: str = field(default="first-order", metadata=_choice(
+        "first-order", "none", doc="slip flow: Burgdorfer's first order (a = 1) or none"))
 
 
 @dataclass(frozen=True)
@@ -162,8 +187,9 @@ class Friction(_Section):
     """Friction constants and model variants.
 
     ``mu_cc`` [-] and ``speed_constant`` C [m/s] are the paper's Eq. 29 constants.
-    ``variant``: ``"paper"`` reproduces Eqs. 13 and 29 as printed (with their jumps at
-    h = h_c and h = 3 sigma); ``"continuous"`` removes the jumps (see
+    ``variant``: ``"loads"`` (the default) takes the local traction from the solved loads,
+    mu_c p_c + film shear, over T_eff/R; ``"paper"`` reproduces Eqs. 13 and 29 as printed
+    (with their jumps at h = h_c and h = 3 sigma); ``"continuous"`` removes the jumps (see
     :mod:`webfem.physics.friction`). ``roughness``: ``"web"`` uses sigma = sigma_w as
     the paper does, ``"composite"`` uses sqrt(sigma_r^2 + sigma_w^2). ``distribution``:
     asperity heights ``"exponential"`` (Eq. 2, the paper's) or ``"gaussian"`` (Eq. 1).
@@ -174,16 +200,29 @@ class Friction(_Section):
                                                      doc="asperity friction constant mu_cc"))
     speed_constant: float = field(default=0.4, metadata=_num("m/s", 0.0,
                                                              doc="speed constant C"))
-    variant: str = field(default="paper", metadata=_choice(
-        "paper", "continuous", doc="Eqs. 13, 29 as printed, or without their jumps"))
+    variant: str = field(default="loads", metadata=_choice(
+        "loads", "paper", "continuous", doc="friction from the solved loads, Eqs. 13, 29 "
+        "as printed, or without their jumps"))
     roughness: str = field(default="web", metadata=_choice(
         "web", "composite", doc="sigma = sigma_w (paper) or sqrt(sigma_r^2 + sigma_w^2)"))
     distribution: str = field(default="exponential", metadata=_choice(
         "exponential", "gaussian", doc="asperity heights: Eq. 2 (paper) or Eq. 1"))
 
 
+@dataclass(frozen=True)
+class Model(_Section):
+    """Which physics: ``physics = "full"`` (every effect webfem models, each switchable by
+    its own key) or ``"paper"`` (Hashimoto's model exactly: no web inertia, a membrane unless
+    web.bending_stiffness is given, no slip flow, the paper's permeation and friction)."""
+
+    _name = "model"
+    physics: str = field(default="full", metadata=_choice(
+        "full", "paper", doc="every effect webfem models, or the paper's model exactly"))
+
+
 _SECTIONS: dict[str, type[_Section]] = {
     "roller": Roller, "web": Web, "wrap": Wrap, "air": Air, "friction": Friction,
+    "model": Model,
 }
 
 

@@ -25,11 +25,7 @@ SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", 
 
 def _modules():
     for name in SUBCOMMANDS:
-        try:
-            yield importlib.import_module(f"{__package__}.{name}")
-        except ModuleNotFoundError as err:   # study.py is written by another hand
-            if name != "study" or err.name != f"{__package__}.{name}":
-                raise
+        yield importlib.import_module(f"{__package__}.{name}")
 
 
 def build_parser() -> argparse.ArgumentParser:

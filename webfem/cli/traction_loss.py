@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..traction import CHART_PARAMETERS, mu_curve, traction_loss_speed, traction_loss_table
+from ..traction import (CHART_PARAMETERS, CHART_POINTS, SPEED_RANGE, mu_curve,
+                        traction_loss_speed, traction_loss_table)
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, case_from, model_options,
                      options_epilog, output_folder, positive_int, print_json)
 
@@ -19,16 +20,18 @@ def add_parser(subparsers) -> None:
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
     add_case_arguments(p)
     p.add_argument("--mu-min", type=float, required=True, help="friction threshold, e.g. 0.1")
-    p.add_argument("--min-speed", type=float, default=0.5, help="scan from (m/s, default 0.5)")
-    p.add_argument("--max-speed", type=float, default=100.0, help="scan to (m/s, default 100)")
+    p.add_argument("--min-speed", type=float, default=SPEED_RANGE[0],
+                   help=f"scan from (m/s, default {SPEED_RANGE[0]:g})")
+    p.add_argument("--max-speed", type=float, default=SPEED_RANGE[1],
+                   help=f"scan to (m/s, default {SPEED_RANGE[1]:g})")
     p.add_argument("--json", action="store_true",
                    help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
                         "speed_peak, bracket, evaluations, message")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR")
-    p.add_argument("--points", type=positive_int, default=5,
-                   help="points per parameter in the chart")
+    p.add_argument("--points", type=positive_int, default=CHART_POINTS,
+                   help=f"points per parameter in the chart (default {CHART_POINTS})")
     p.add_argument("--quiet", action="store_true", help="no progress line")
 
 

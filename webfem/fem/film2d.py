@@ -3,13 +3,15 @@
 Scaled as in :mod:`webfem.fem.forms`, with Z = z / (R eps^(1/3)) across the width (the same
 scale as X, so the operator stays isotropic; the web edges sit at Z = +-lambda):
 
-    div((1 + d P) H^3 grad P) = d((1 + d P) H)/dX + K (1 + d P) P,
+    div(((1 + d P) H^3 + s H^2) grad P) = d((1 + d P) H)/dX + K (1 + ds P) P,
 
 P = 0 on the ends X = X_s, X_e and on the web edges (paper's Eq. 19); with the half width
 Z in [0, lambda], dP/dZ = 0 at Z = 0 (symmetry, natural). The gap H(X) comes from the 1-D
 web. Weak residual with test function q:
 
-    F_p = int (1 + d P) H^3 grad P . grad q - (1 + d P) H q_X + K (1 + d P) P q.
+    F_p = int ((1 + d P) H^3 + s H^2) grad P . grad q - (1 + d P) H q_X + K (1 + ds P) P q
+
+(s: first-order slip, ds: the sink's compressibility; see :mod:`webfem.fem.forms`).
 
 The forms take coefficient arrays at quadrature points (:func:`film_coefficients`), computed
 once per assembly. The derivative with respect to the web goes through the transfer matrices
@@ -32,23 +34,27 @@ def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     :func:`webfem.fem.forms.film_gap`), ``P, PX, PZ`` the
     pressure and its gradient there. ``newton=False`` freezes rho = 1 + d P and H^3 (Picard).
     """
-    d, K = prm["d"], prm["K"]
+    d, K, s = prm["d"], prm["K"], prm.get("slip", 0.0)
+    ds = prm.get("ds", d)
     Hf, above = film_gap(H, prm["floor"])
-    rho = 1.0 + d * P
-    Hf3 = Hf**3
+    rho, rho_s = 1.0 + d * P, 1.0 + ds * P
+    Hf2 = Hf**2
+    Hf3 = Hf2 * Hf
+    diffusion = rho * Hf3 + s * Hf2           # Poiseuille conductance with slip
+    dD = 3.0 * rho * Hf2 + 2.0 * s * Hf       # its derivative in H
     nt = 1.0 if newton else 0.0
     return {
-        "D": rho * Hf3,                       # diffusion coefficient
+        "D": diffusion,                       # diffusion coefficient
         "C": rho * Hf,                        # Couette flux
-        "S": K * rho * P,                     # sink
-        # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 d P) dp
-        "jD": rho * Hf3,
+        "S": K * rho_s * P,                   # sink
+        # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 ds P) dp
+        "jD": diffusion,
         "jX": nt * (d * Hf3 * PX - d * Hf),
         "jZ": nt * d * Hf3 * PZ,
-        "jS": K * (rho + nt * d * P),
-        # dF/dH (to the web): (3 rho H^2 grad P) . grad q - rho q_X
-        "hX": above * (nt * 3.0 * rho * Hf**2 * PX - rho),
-        "hZ": above * nt * 3.0 * rho * Hf**2 * PZ,
+        "jS": K * (rho_s + nt * ds * P),
+        # dF/dH (to the web): (dD/dH grad P) . grad q - rho q_X
+        "hX": above * (nt * dD * PX - rho),
+        "hZ": above * nt * dD * PZ,
     }
 
 

@@ -4,11 +4,14 @@ Scaled variables (Eshel-Elrod): X = x / (R eps^(1/3)), H = h / (R eps^(2/3)),
 P = (p - p_a) R / T. Unknowns: film pressure P and web deflection W; the gap is
 H = W + D(X) with the roller's departure D = (|X| - beta/2)^2 / 2 outside the wrap, 0 inside.
 
-Reynolds, compressible, with the Darcy sink through the web (physics.md, divided by p_a):
+Reynolds, compressible, with first-order slip and the Darcy sink through the web (physics.md,
+divided by p_a):
 
-    ((1 + d P) H^3 P')' = ((1 + d P) H)' + K (1 + d P) P,     P = 0 at both ends,
+    (((1 + d P) H^3 + s H^2) P')' = ((1 + d P) H)' + K (1 + ds P) P,     P = 0 at both ends,
 
-d = T / (R p_a) (0 for the incompressible limit), K = 12 k / (R t eps^(4/3)).
+d = T / (R p_a) (0 for the incompressible limit), K = 12 k / (R t eps^(4/3)); s = 6 a
+lambda_a / (R eps^(2/3)) Burgdorfer's slip term (0 without slip); ds = d/2 for isothermal
+Darcy flow through the web (density (p + p_a)/2), d for the paper's sink (density p).
 
 Web equilibrium (membrane with tension, beam with bending when Dn > 0):
 
@@ -22,7 +25,7 @@ W'' = 0 of Eq. 20.
 
 Weak residuals (test functions q for P, v for W; boundary terms vanish by the conditions):
 
-    F_p = int (1 + d P) H^3 P' q' - (1 + d P) H q' + K (1 + d P) P q
+    F_p = int ((1 + d P) H^3 + s H^2) P' q' - (1 + d P) H q' + K (1 + ds P) P q
     F_w = int W' v' + Dn (W'' - chi) v'' - (P + Pc(H) - chi) v
 
 and their exact Jacobian. The film uses a smooth maximum of H and a floor H_f (a fraction of
@@ -86,23 +89,26 @@ def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
     """
     H = W + departure(x, prm["beta"])
     Hf, above = film_gap(H, prm["floor"])
-    d = prm["d"]
-    rho = 1.0 + d * P
+    d, s = prm["d"], prm.get("slip", 0.0)
+    ds = prm.get("ds", d)
+    rho, rho_s = 1.0 + d * P, 1.0 + ds * P
     chi = in_wrap(x, prm["beta"])
     Pc, kc = contact_law(H, prm)
-    Hf3 = Hf**3
+    Hf2 = Hf**2
+    Hf3 = Hf2 * Hf
+    diffusion = rho * Hf3 + s * Hf2                 # Poiseuille conductance with slip
     return {
-        "flux": rho * Hf3 * dP - rho * Hf,          # F_p = flux q'
+        "flux": diffusion * dP - rho * Hf,          # F_p = flux q'
         "load": P + Pc - chi,                       # F_w = W'v' + Dn (W'' - chi) v'' - load v
         "chi": chi,
         "a_p": d * Hf3 * dP - d * Hf,               # d flux / dP (through rho)
-        "a_dp": rho * Hf3,                          # d flux / dP'
+        "a_dp": diffusion,                          # d flux / dP'
         "a_w": -above * rho,                        # d flux / dW (through the Couette flux)
-        "a_w3": above * 3.0 * rho * Hf**2 * dP,     # d flux / dW (through H^3)
+        "a_w3": above * (3.0 * rho * Hf2 + 2.0 * s * Hf) * dP,  # d flux / dW (conductance)
         "k_c": kc,                                  # -d load / dW (contact stiffness)
-        "sink": prm["K"] * rho * P if sink else 0.0,           # F_p += sink q
-        "a_sink": prm["K"] * rho if sink else 0.0,
-        "a_sink_p": prm["K"] * d * P if sink else 0.0,
+        "sink": prm["K"] * rho_s * P if sink else 0.0,         # F_p += sink q
+        "a_sink": prm["K"] * rho_s if sink else 0.0,
+        "a_sink_p": prm["K"] * ds * P if sink else 0.0,
     }
 
 
@@ -137,7 +143,8 @@ def jacobian(dp, dw, q, v, w):
 
 @LinearForm
 def sink_residual(q, v, w):
-    """The Darcy sink K (1 + d P) P q of F_p, kept apart so it can be lumped (nodal quadrature).
+    """The Darcy sink K (1 + ds P) P q of F_p, kept apart so it can be lumped (nodal
+    quadrature); ``w["d"]`` carries ds.
 
     With P1 pressure and nodal quadrature the film operator for a given gap is an M-matrix,
     so the pressure cannot oscillate where the film is thin and the sink dominates (a landed

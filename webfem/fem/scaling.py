@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..physics.contact import contact_gap
+from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["FoilParameters"]
 
@@ -26,7 +27,10 @@ class FoilParameters:
     """Dimensionless parameters of the scaled problem.
 
     beta wrap length B/eps^(1/3); K = 12 k/(R t eps^(4/3)) permeation; d = T/(R p_a)
-    compressibility (0: incompressible); Dn = D/(T (R eps^(1/3))^2) bending; c, S contact
+    compressibility (0: incompressible); ds = d/2 (isothermal Darcy sink, density (p + p_a)/2)
+    or d (the paper's sink, density p): the compressibility of the sink; slip = 6 a lambda_a /
+    (R eps^(2/3)) the first-order slip term of the Poiseuille flux (0: no slip);
+    Dn = D/(T (R eps^(1/3))^2) bending; c, S contact
     pressure Pc = c exp(-H/S) (exponential heights, ``law`` 0; Gaussian, ``law`` 1, see
     :func:`webfem.fem.forms.contact_law`); contact 1/0; floor: the scaled film thickness
     below which Reynolds sees a smooth floor (from_case takes it as a fraction of sigma);
@@ -43,12 +47,19 @@ class FoilParameters:
     floor: float
     law: int = 0
     H_c: float = 0.0
+    ds: float | None = None
+    slip: float = 0.0
+
+    def __post_init__(self):
+        if self.ds is None:     # the paper's sink unless told otherwise
+            object.__setattr__(self, "ds", self.d)
 
     @classmethod
     def from_case(cls, case, compressible=True, contact=True, floor=0.1) -> "FoilParameters":
         """The parameters of ``case`` (a :class:`webfem.case.Case`); ``floor`` is a fraction
         of the roughness sigma."""
-        R, T, eps = case.roller.radius, case.web.tension, case.eps
+        # T is the effective tension T_eff = T - rho_w t U_w^2 (web inertia)
+        R, T, eps = case.roller.radius, case.tension_eff, case.eps
         w = case.web
         gaussian = case.friction.distribution == "gaussian"
         # exponential: Pc = c exp(-H/S); Gaussian: Pc = c (S/sqrt(2 pi) e^(-H^2/2S^2) - ...)
@@ -56,11 +67,14 @@ class FoilParameters:
              w.modulus_thickness * case.sigma * R / (2.0 * w.thickness * T))
         h_c = contact_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
                           case.friction.distribution)
+        d = case.p_bar / case.air.ambient_pressure if compressible else 0.0
         return cls(
             beta=case.beta,
             K=12.0 * w.permeability / (R * w.thickness * eps ** (4 / 3)),
-            d=case.p_bar / case.air.ambient_pressure if compressible else 0.0,
-            Dn=w.bending_stiffness / (T * case.x_scale**2),
+            d=d, ds=0.5 * d if case.permeation_model == "isothermal" else d,
+            slip=(6.0 * SLIP_COEFFICIENT * case.air.mean_free_path / case.h_scale
+                  if case.slip_model == "first-order" else 0.0),
+            Dn=case.bending_used / (T * case.x_scale**2),
             c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0,
             floor=floor * case.sigma / case.h_scale,
             law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
@@ -68,10 +82,10 @@ class FoilParameters:
 
     def as_form_args(self) -> dict:
         """The keyword arguments the forms' coefficient functions take."""
-        return dict(beta=self.beta, K=self.K, d=self.d, Dn=self.Dn, c=self.c, S=self.S,
-                    contact=self.contact, floor=self.floor, law=self.law)
+        return dict(beta=self.beta, K=self.K, d=self.d, ds=self.ds, slip=self.slip, Dn=self.Dn,
+                    c=self.c, S=self.S, contact=self.contact, floor=self.floor, law=self.law)
 
     def homotopy(self, s: float) -> "FoilParameters":
         """Permeation, compressibility and bending scaled by ``s``: s = 0 is the Eshel-Elrod
         problem, which Newton solves from a cold start (continuation)."""
-        return replace(self, K=s * self.K, d=s * self.d, Dn=s * self.Dn)
+        return replace(self, K=s * self.K, d=s * self.d, ds=s * self.ds, Dn=s * self.Dn)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import matplotlib
@@ -11,10 +10,21 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from ..files import replacing
+
 __all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
+
+
+def _f(row: dict, key: str) -> float:
+    """A row's number, NaN where it is missing (a failed point, a null in JSON or CSV)."""
+    value = row.get(key)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return np.nan
 
 
 def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
@@ -22,7 +32,8 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     """mu against roller speed per series, with the gaps (dashed) on a second axis.
 
     ``reference``: rows of another model (the closed form beside an FE sweep), drawn as thin
-    solid lines in the series' colours, mu only.
+    solid lines in the series' colours, mu only. Points that did not converge are marked x
+    on the axis and left out of the lines.
 
     The regime boundaries h = h_c and h = 3 sigma are drawn as grey horizontal lines on the
     gap axis (one per distinct value among the series).
@@ -34,35 +45,42 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     levels = {}
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
+        good = [r for r in sel if r.get("converged") is True]
+        ok = [r.get("converged") is True for r in sel]
         U = [r["value"] for r in sel]
         colour = colours[i % len(colours)]
         model = sel[0]["model"]
-        ax.plot(U, [r["mu"] if r["converged"] else np.nan for r in sel], "-", color=colour,
+        ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
                 lw=1.8, label=f"{label} ({model})" if len(series) > 1 or reference
                 else f"mu ({model})")
-        bad = [r for r in sel if not r["converged"]]
+        bad = [r for r, k in zip(sel, ok) if not k]
         if bad:
             ax.plot([r["value"] for r in bad], [0.0] * len(bad), "x", color=colour,
                     label="not converged")
         for key, name, dash in _GAP_STYLES:
-            ax2.plot(U, [r[key] * 1e6 for r in sel], linestyle=dash, color=colour, lw=1.0,
+            ax2.plot(U, [_f(r, key) * 1e6 if k else np.nan for r, k in zip(sel, ok)],
+                     linestyle=dash, color=colour, lw=1.0,
                      label=f"h {name}" if i == 0 else None)
         if reference:
             ref = [r for r in reference if r["series"] == label]
-            ax.plot([r["value"] for r in ref], [r["mu"] for r in ref], "-", color=colour,
+            ax.plot([r["value"] for r in ref], [_f(r, "mu") for r in ref], "-", color=colour,
                     lw=0.9, alpha=0.6,
                     label=f"{label} ({ref[0]['model']})" if ref else None)
-        levels.setdefault(round(sel[0]["h_c"] * 1e6, 3), "h = h_c")
-        levels.setdefault(round(3 * sel[0]["sigma"] * 1e6, 3), "h = 3 sigma")
+        for key, factor, name in (("h_c", 1.0, "h = h_c"), ("sigma", 3.0, "h = 3 sigma")):
+            known = [_f(r, key) for r in good if np.isfinite(_f(r, key))]
+            if known:
+                levels.setdefault(round(factor * known[0] * 1e6, 3), name)
     for level, name in levels.items():
         ax2.axhline(level, color="0.55", lw=0.8, ls="-", zorder=0)
-        ax2.annotate(f"{name} = {level:.2f} um", (0.01, level), xycoords=("axes fraction", "data"),
-                     fontsize=7, color="0.35", va="bottom")
+        ax2.annotate(f"{name} = {level:.2f} um", (0.01, level),
+                     xycoords=("axes fraction", "data"), fontsize=7, color="0.35",
+                     va="bottom")
     ax.set_xlabel("roller speed U_r [m/s]" if rows[0]["parameter"] == "roller.speed"
                   else rows[0]["parameter"])
     ax.set_ylabel("friction coefficient mu [-]")
     ax2.set_ylabel("web spacing h [um] (dashed)")
-    ax.set_ylim(0.0, max(0.4, 1.1 * max((r["mu"] for r in rows if isinstance(r["mu"], float)), default=0)))
+    mu = [_f(r, "mu") for r in rows if r.get("converged") is True]
+    ax.set_ylim(0.0, max([0.4] + [1.1 * m for m in mu if np.isfinite(m)]))
     ax2.set_ylim(0.0, None)
     ax.grid(True, alpha=0.3)
     h1, l1 = ax.get_legend_handles_labels()
@@ -114,15 +132,11 @@ def _save(fig, path) -> Path:
     created by os.open so the user's umask sets the mode (0644 by default)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
     try:
-        os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666))
-        fig.savefig(tmp, dpi=110, format="png")
-        os.replace(tmp, path)
+        with replacing(path) as tmp:
+            fig.savefig(tmp, dpi=110, format="png")
     finally:
         plt.close(fig)
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 

@@ -20,10 +20,11 @@ Examples
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
+
+from ..files import replacing
 
 __all__ = ["web_line_mesh", "film_quad_mesh", "write_meshes"]
 
@@ -54,15 +55,8 @@ def film_quad_mesh(x, z):
 def _write_atomic(mesh, path: Path) -> Path:
     import meshio
 
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    # created by os.open so the kernel applies the user's umask (0644 by default)
-    os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666))
-    try:
+    with replacing(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 

@@ -18,7 +18,7 @@ import meshio
 import numpy as np
 
 from ..errors import InputError
-from ..sweeps.files import remove_stale_temps, replacing, write_text
+from ..files import remove_stale_temps, replacing, write_text
 
 __all__ = ["WEB_FIELDS", "FILM_FIELDS", "web_mesh", "film_mesh", "write_result", "write_pvd",
            "SweepVtu"]
@@ -130,7 +130,8 @@ class SweepVtu:
     Each file holds as field data the swept ``value`` (also under the parameter's name),
     ``series`` and ``point`` (numbers from 1), ``converged`` (1 or 0) and the series label
     as the name of an array ``"series: LABEL"`` holding the series number (VTK string
-    arrays would make the files unreadable to meshio). For :func:`webfem.sweeps.run`'s ``vtu`` argument: ``missing`` tells which
+    arrays would make the files unreadable to meshio); the ``.pvd`` names each data set by
+    its label. For :func:`webfem.sweeps.run`'s ``vtu`` argument: ``missing`` tells which
     points need files (a resumed sweep solves those again), ``write`` writes one point,
     ``close`` the collections (once; later calls return the same paths).
 

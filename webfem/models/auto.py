@@ -51,8 +51,8 @@ SAFETY = 2.0
 QUANTITIES = ("mu", "h_center", "h_min")
 
 
-def _friction(case: Case, h, w, resting=False):
-    return float(np.sum(friction_for(case, h, resting)["mu"] * w))
+def _friction(case: Case, h, w, resting=False, p=None, dpdx=None):
+    return float(np.sum(friction_for(case, h, resting, p, dpdx)["mu"] * w))
 
 
 def _closed_estimate(case: Case, r: Result, quantity: str):
@@ -84,8 +84,11 @@ def _closed_estimate(case: Case, r: Result, quantity: str):
 def _fe1d_estimate(case: Case, r: Result, quantity: str):
     lam = case.lam
     if quantity == "mu":
-        h, w = r.diagnostics["wrap_h"], r.diagnostics["wrap_w"]
-        est = abs(_friction(case, h * (1.0 - LEAK_CENTER / lam), w, resting=True) / r["mu"]
+        d = r.diagnostics
+        h = d.wrap_h
+        # edge leakage lowers a flying film; a web resting on its asperities (h ~ h_c) stays
+        lowered = np.maximum(h * (1.0 - LEAK_CENTER / lam), np.minimum(h, r["h_c"]))
+        est = abs(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx) / r["mu"]
                   - 1.0)
     else:
         est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam

@@ -20,8 +20,10 @@ import numpy as np
 
 from ..case import Case
 from ..physics import closed_form as cf
-from ..physics.contact import REGIMES, contact_gap
-from ..physics.friction import delta_T_from_mu, friction_for, wrap_average_linear_gap
+from ..physics.contact import REGIMES, contact_gap, contact_pressure
+from ..physics.effects import CLOSED_FORM_CARRIES, idler_check, included, left_out
+from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
+                                wrap_average_linear_gap, wrap_average_loads)
 from ..errors import InputError
 from ..physics.validity import contact_overload, slip_warning, thin_film_check
 from ..result import Diagnostics, Fields, Result, Summary
@@ -38,23 +40,27 @@ def case_arrays(cases) -> dict[str, np.ndarray]:
     """Stack cases into the keyword arrays :func:`evaluate` takes."""
     get = {
         "R": lambda c: c.roller.radius, "U_r": lambda c: c.roller.speed,
-        "U_w": lambda c: c.web.speed, "L": lambda c: c.web.width, "T": lambda c: c.web.tension,
+        "U_w": lambda c: c.web.speed, "L": lambda c: c.web.width, "T": lambda c: c.tension_eff,
         "B": lambda c: c.B, "k": lambda c: c.web.permeability, "t": lambda c: c.web.thickness,
         "eta": lambda c: c.air.viscosity, "E_b": lambda c: c.web.modulus_thickness,
         "sigma": lambda c: c.sigma, "mu_cc": lambda c: c.friction.mu_cc,
         "C": lambda c: c.friction.speed_constant,
+        "slip_length": lambda c: (2.0 * SLIP_COEFFICIENT * c.air.mean_free_path
+                                  if c.slip_model == "first-order" else 0.0),
     }
     return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
 
 
 def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper",
-             distribution="exponential"):
+             distribution="exponential", slip_length=0.0):
     """Closed-form gaps and traction at many operating points at once (arrays broadcast).
 
     Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
     ``h_center``, ``h_outlet``, ``h_min`` [m], ``mu``, ``delta_T`` [N/m], ``lambda``, ``beta``,
     ``eq21_valid``, ``h_c`` [m], the regime shares and ``regime_code`` (index into
-    :data:`webfem.physics.contact.REGIMES`).
+    :data:`webfem.physics.contact.REGIMES`). ``T`` is the effective tension T_eff;
+    ``variant="loads"`` averages the friction from the loads (with the slip length 2 a lambda
+    in the film's shear) numerically, the others exactly.
     """
     U = np.asarray(U_r, float) + U_w
     U_s = np.abs(np.asarray(U_r, float) - U_w)
@@ -64,23 +70,49 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     kappa = cf.permeability_parameter(k, T, B, eta, t, R, U)
     h_in = cf.gap_inlet(R, eps, lam)
     h_out = h_in - 2.0 * R * kappa
-    avg = wrap_average_linear_gap(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
-                                  sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant,
-                                  distribution=distribution)
+    if variant == "loads":
+        avg = wrap_average_loads(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
+                                 sigma=sigma, t=t, mu_cc=mu_cc, C=C, distribution=distribution,
+                                 slip_length=slip_length)
+    else:
+        avg = wrap_average_linear_gap(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
+                                      sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant,
+                                      distribution=distribution)
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
-    return {
+    h_c = contact_gap(T / R, E_b, sigma, t, distribution)
+    return {"contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t,
+                                            distribution),
         "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
         "h_outlet": np.maximum(h_out, 0.0), "h_min": np.maximum(h_out, 0.0),
         "mu": avg["mu"], "delta_T": delta_T_from_mu(avg["mu"], T, B),
         "lambda": lam, "beta": beta, "eq21_valid": cf.eq21_valid(beta, lam),
-        "eps": eps, "kappa": kappa, "h_c": contact_gap(T / R, E_b, sigma, t, distribution),
+        "eps": eps, "kappa": kappa, "h_c": h_c,
         "share_boundary": avg["share_boundary"], "share_mixed": avg["share_mixed"],
         "share_fluid": avg["share_fluid"], "regime_code": np.argmax(shares, axis=0),
     }
 
 
+def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
+    """Wrap average of the load share min(p_c/p_bar, 1) that asperity contact carries on the
+    linear gap, the web resting at h_c where Eq. 21 lands it (Gauss-Legendre, ``n``)."""
+    g, gw = np.polynomial.legendre.leggauss(n)
+    s = 0.5 * (g + 1.0)
+    h_in, h_out, h_c, p_bar = (np.asarray(v, float)[..., None] for v in
+                               np.broadcast_arrays(h_in, h_out, h_c, p_bar))
+    h = np.maximum(h_in + (h_out - h_in) * s, np.maximum(h_c, 0.0))
+    pc = contact_pressure(h, np.asarray(E_b)[..., None] if np.ndim(E_b) else E_b,
+                          np.asarray(sigma)[..., None] if np.ndim(sigma) else sigma,
+                          np.asarray(t)[..., None] if np.ndim(t) else t, distribution)
+    return np.sum(np.minimum(pc / p_bar, 1.0) * 0.5 * gw, axis=-1)
+
+
 def _warnings(case: Case, summary: dict) -> list[str]:
     out = []
+    missing = left_out(case)
+    if missing:
+        out.append("the closed form leaves out " + ", ".join(missing)
+                   + f" (bending D = {case.bending_used:.3g} N m)" * ("bending" in missing)
+                   + "; the FE models carry them")
     if not summary["eq21_valid"]:
         out.append(f"outside Eq. 21's stated range: beta = {summary['beta']:.3g} (needs > 6), "
                    f"lambda = {summary['lambda']:.3g} (needs > 7); use an FE model")
@@ -104,7 +136,10 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Sum
     finite = bool(np.isfinite(s["mu"]))
     s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=finite,
              iterations=0, n_dofs=0, residual=0.0, solve_time_s=elapsed,
-             sigma=case.sigma, U=case.U, U_slide=case.U_slide)
+             sigma=case.sigma, U=case.U, U_slide=case.U_slide, T_eff=case.tension_eff,
+             bending_stiffness_used=0.0,
+             effects=tuple(e for e in included(case) if e in CLOSED_FORM_CARRIES),
+             **idler_check(case, case.friction.mu_cc * s["contact_share"]))
     s["warnings"] = _warnings(case, s)
     if not finite:
         s["solver_message"] = ("no finite mu: the Eq. 21 gap lands the web and "
@@ -119,7 +154,7 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
     signature and not used: the closed form needs no start."""
     thin_film_check(case)
     t0 = time.perf_counter()
-    values = evaluate(**case_arrays([case]), variant=case.friction.variant,
+    values = evaluate(**case_arrays([case]), variant=case.friction_variant,
                       distribution=case.friction.distribution)
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
@@ -128,7 +163,9 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
     R, B = case.roller.radius, case.B
     x = np.linspace(-R * B / 2, R * B / 2, options.n_points)
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
-    fields = Fields(x=x, h=h, **friction_for(case, h))
+    # with friction from the loads the web rests on its asperities where Eq. 21 lands it
+    h_friction = np.maximum(h, summary.h_c) if case.friction_variant == "loads" else h
+    fields = Fields(x=x, h=h, **friction_for(case, h_friction))
     return Result(case, summary, fields,
                   Diagnostics(method="Eq. 21 + Eqs. 10-13, 28-31, exact average",
                               options=options))
@@ -146,10 +183,10 @@ def solve_many(cases) -> list[Result]:
     """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
     cases = list(cases)
     out: list[Result | None] = [None] * len(cases)
-    kinds = {(c.friction.variant, c.friction.distribution) for c in cases}
+    kinds = {(c.friction_variant, c.friction.distribution) for c in cases}
     for variant, distribution in kinds:
         idx = [i for i, c in enumerate(cases)
-               if (c.friction.variant, c.friction.distribution) == (variant, distribution)]
+               if (c.friction_variant, c.friction.distribution) == (variant, distribution)]
         t0 = time.perf_counter()
         values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant,
                           distribution=distribution)

@@ -27,6 +27,7 @@ from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES
+from ..physics.effects import idler_check, included
 from ..physics.friction import delta_T_from_mu, friction_for
 from ..physics.validity import (contact_overload, slip_warning, thin_film_check,
                                  wrap_length_check)
@@ -130,6 +131,11 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
         why = admissibility(case, problem, u, prm) if info["converged"] else None
     if why:
         _no_admissible_solution(case, prm, why)
+        start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
+                                                                 start, problem, u, info, why)
+    if why and info["converged"]:
+        _no_admissible_solution(case, prm, why, problem, u)
+    if why:
         info["converged"] = False
         info["reason"] = f"converged to an inadmissible field: {why}"
     notes = _user_mesh_check(disc, case, problem, u, prm, options) if info["converged"] else []
@@ -140,6 +146,27 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
                                f"{info['reason']} after {info['iterations']} iterations, "
                                f"residual {info['residual']:.3e}", result, info.get("history"))
     return result
+
+
+def _on_finer_meshes(disc, case, prm, options, start, problem, u, info, why):
+    """A converged but inadmissible state (a coarse mesh that lets the web through its
+    asperities): solve again from cold on meshes one and two levels finer, as an analyst
+    would. Returns the first admissible solution, else the last one tried."""
+    limit = type(options).__dataclass_fields__["level"].metadata["hi"]
+    for level in range(options.level + 1, min(options.level + 2, limit) + 1):
+        finer_options = options.replace(level=level)
+        cold = disc.start(case, prm, finer_options, None)
+        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, finer_options)
+        info2["iterations"] += info["iterations"]
+        info2["history"] = list(info["history"]) + list(info2["history"])
+        why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
+        info2["reason"] = (f"{info2.get('reason', '')} (on mesh level {level}: level "
+                           f"{options.level} gave an inadmissible field: {why})")
+        start, problem, u, info, why = cold, problem2, u2, info2, why2
+        options = finer_options
+        if info["converged"] and not why:
+            break
+    return start, problem, u, info, options, why
 
 
 #: A user mesh is checked when its cells near the wrap edges are longer than this, in units
@@ -191,12 +218,35 @@ def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
     return None
 
 
-def _no_admissible_solution(case: Case, prm: FoilParameters, why: str) -> None:
+def _no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=None,
+                            u=None) -> None:
     """An input error when the case admits no solution with a positive gap: the web lands
-    and the contact law cannot carry T/R at any h >= 0."""
+    and the contact law cannot carry T/R at any h >= 0, or (``problem`` and ``u`` given: a
+    mesh-converged state) the web is pressed through its asperities somewhere because the
+    load there exceeds what contact carries at h = 0."""
     overload = contact_overload(case) if prm.contact else None
     if overload:
         raise InputError(f"no admissible solution: the web lands ({why}) and {overload}")
+    if problem is None or not prm.contact:
+        return
+    Hmin, Xmin = minimum(problem, u, prm)
+    if Hmin > 0.0:
+        return
+    w = case.web
+    p0 = prm.c * case.p_bar if prm.law == 0 else float(
+        forms.contact_law(np.array([0.0]), prm.as_form_args())[0][0] * case.p_bar)
+    suction = float(np.min(problem.pressure(u, problem.X))) * case.p_bar
+    cause = (f"the film's suction ({-suction:.3g} Pa below ambient where the web lifts off) "
+             "pulls it" if suction < -case.p_bar else "the web is pressed")
+    bend = (f" with bending stiffness D = {case.bending_used:.3g} N m"
+            if case.bending_used > 0 else "")
+    raise InputError(
+        f"no admissible solution: {cause} through its asperities at x = "
+        f"{Xmin * case.x_scale:.4g} m{bend}: the contact pressure needed exceeds what the "
+        f"{case.friction.distribution} contact law carries at h = 0 ({p0:.4g} Pa, E_b sigma/"
+        f"(2t) for the exponential law); a stiffer or rougher web (web.modulus_thickness = "
+        f"{w.modulus_thickness:g} Pa, web.roughness = {w.roughness:g} m) or a lower "
+        f"web.tension keeps it on its asperities")
 
 
 def minimum(problem, u, prm) -> tuple[float, float]:
@@ -226,9 +276,10 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     """Bisect cells longer than ``ratio`` times the local film or contact length, or None.
 
     Where the film is thin the sink and the contact springs make boundary layers far
-    shorter than the entry-zone scale: the film's reaction length sqrt(H^3 / K) and the
-    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities. No refinement past
-    ``max_cells`` cells.
+    shorter than the entry-zone scale: the film's reaction length sqrt(H^3 / K), the
+    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities and, for a beam, the
+    length (Dn / k_c)^(1/4) over which a web bends into its asperities (a beam on an elastic
+    foundation of stiffness k_c). No refinement past ``max_cells`` cells.
     """
     X = problem.X
     # films thinner than the roughness carry nothing the asperities do not: resolve to S
@@ -238,9 +289,11 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     if prm.K > 0:
         scale = np.minimum(scale, np.sqrt(Hc**3 / prm.K))
     if prm.contact:
+        kc = forms.contact_law(Hc, prm.as_form_args())[1]
         with np.errstate(all="ignore"):
-            scale = np.minimum(scale,
-                               1.0 / np.sqrt(forms.contact_law(Hc, prm.as_form_args())[1]))
+            scale = np.minimum(scale, 1.0 / np.sqrt(kc))
+            if prm.Dn > 0:
+                scale = np.minimum(scale, (prm.Dn / kc) ** 0.25)
     dx = np.diff(X)
     mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
     if not mark.any() or X.size + mark.sum() > max_cells:
@@ -252,12 +305,16 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
     Hs, Xs = case.h_scale, case.x_scale
     pts, wts = wrap_samples(problem.X, prm.beta)
     h = problem.gap(u, prm, pts) * Hs
-    loc = friction_for(case, h, resting=True)
+    p, dpdx = _pressure_and_gradient(case, problem, u, pts)
+    loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
     mu = float(np.sum(loc["mu"] * wts) / prm.beta)
     shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
-    Pf = problem.pressure(u, pts)
+    Pf = (p - case.air.ambient_pressure) / case.p_bar
     Pc = forms.contact_law(h / Hs, prm.as_form_args())[0]
     contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
+    # at the onset of slip the sliding speed is small: the asperities hold with the static
+    # mu_cc on the share of the wrap load they carry, the film with nothing
+    idler = idler_check(case, case.friction.mu_cc * contact_share)
     Hmin, Xmin = minimum(problem, u, prm)
     e = 0.5 * prm.beta
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
@@ -269,7 +326,7 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
     summary = Summary(
         model=disc.name, h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
         h_min=Hmin * Hs, x_min=Xmin * Xs, mu=mu,
-        delta_T=float(delta_T_from_mu(mu, case.web.tension, case.B)),
+        delta_T=float(delta_T_from_mu(mu, case.tension_eff, case.B)),
         regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
         eq21_valid=bool(eq21_valid(case.beta, case.lam)),
         converged=bool(info["converged"]), iterations=int(info["iterations"]),
@@ -279,15 +336,30 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
         eps=case.eps, kappa=case.kappa, U=case.U, U_slide=case.U_slide,
         method=options.method, mesh=disc.mesh_text(problem, options),
         warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
-        solver_message=info.get("reason", ""), **{"n_cells": len(problem.X) - 1, **extra})
+        solver_message=info.get("reason", ""), T_eff=case.tension_eff,
+        bending_stiffness_used=case.bending_used, effects=included(case), **idler,
+        **{"n_cells": len(problem.X) - 1, **extra})
     diagnostics = Diagnostics(
         method=options.method, history=tuple(info.get("history", [])),
         reason=info.get("reason", ""), continuation=tuple(info.get("steps", [])),
-        options=options, wrap_h=h, wrap_w=wts / prm.beta, omegas=info.get("omegas"),
+        options=options, wrap_h=h, wrap_w=wts / prm.beta, wrap_p=p, wrap_dpdx=dpdx,
+        omegas=info.get("omegas"),
         block_iterations=info.get("block_iterations"),
         solver={**solver, "problem": problem, "state": u})
     return Result(case, summary, _node_fields(case, problem, u, prm), diagnostics,
                   disc.film(case, problem, u, prm))
+
+
+def _pressure_and_gradient(case: Case, problem, u, X) -> tuple[np.ndarray, np.ndarray]:
+    """Absolute (width-averaged) film pressure [Pa] and its x-derivative [Pa/m] at scaled
+    points X inside cells (a central difference well inside the cell: the pressure is a
+    polynomial there)."""
+    delta = 1e-7
+    P = problem.pressure(u, np.concatenate([X, X - delta, X + delta]))
+    n = len(X)
+    dPdX = (P[2 * n:] - P[n:2 * n]) / (2.0 * delta)
+    return (case.air.ambient_pressure + P[:n] * case.p_bar,
+            dPdX * case.p_bar / case.x_scale)
 
 
 def _warnings(case: Case, options):
@@ -302,8 +374,11 @@ def _node_fields(case: Case, problem, u, prm: FoilParameters) -> Fields:
     Hs = case.h_scale
     H = problem.gap(u, prm, X)
     h = H * Hs
-    p_rel = problem.pressure(u, X) * case.p_bar
+    # one-sided differences at the ends (the pressure is only defined inside the domain)
+    inner = np.clip(X, X[0] + 1e-6, X[-1] - 1e-6)
+    p, dpdx = _pressure_and_gradient(case, problem, u, inner)
+    p_rel = p - case.air.ambient_pressure
     return Fields(x=X * case.x_scale, h=h, w=h - forms.departure(X, prm.beta) * Hs,
-                  p_rel=p_rel, p=p_rel + case.air.ambient_pressure,
-                  p_contact=forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
-                  in_wrap=forms.in_wrap(X, prm.beta), **friction_for(case, h, resting=True))
+                  p_rel=p_rel, p=p, p_contact=forms.contact_law(H, prm.as_form_args())[0]
+                  * case.p_bar, in_wrap=forms.in_wrap(X, prm.beta),
+                  **friction_for(case, h, resting=True, p=p, dpdx=dpdx))

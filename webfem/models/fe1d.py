@@ -103,7 +103,7 @@ class FoilBearing1D:
         bp, bw = self._split[id(basis)]
         P = bp.interpolate(u[self.iP])
         if sink:
-            return {"P": np.asarray(P), "K": prm.K, "d": prm.d,
+            return {"P": np.asarray(P), "K": prm.K, "d": prm.ds,
                     "newton": 1.0 if newton or newton is None else 0.0}
         W = bw.interpolate(u[self.iW_all])
         coef = forms.coefficients(self._x[id(basis)], np.asarray(P), P.grad[0], np.asarray(W),

@@ -20,9 +20,9 @@ import math
 import numpy as np
 from scipy.special import exp1
 
-from .contact import contact_gap, load_ratio, regime_code, resting_gap
+from .contact import RESTING_SHARE, contact_gap, load_ratio, regime_code, resting_gap
 
-__all__ = ["friction_for", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
+__all__ = ["friction_for", "load_friction", "wrap_average_loads", "SLIP_COEFFICIENT", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
            "wrap_average_numeric",
            "delta_T_from_mu", "mu_from_delta_T"]
 
@@ -74,14 +74,70 @@ def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper
             "regime": regime_code(h, h_c, sigma)}
 
 
-def friction_for(case, h, resting: bool = False) -> dict:
-    """:func:`local_friction` at gaps ``h`` [m] with every constant taken from ``case`` (a
-    :class:`webfem.case.Case`); ``resting`` as there."""
-    return local_friction(h, R=case.roller.radius, T=case.web.tension, U_s=case.U_slide,
-                          eta=case.air.viscosity, E_b=case.web.modulus_thickness,
-                          sigma=case.sigma, t=case.web.thickness, mu_cc=case.friction.mu_cc,
-                          C=case.friction.speed_constant, variant=case.friction.variant,
+def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_length=0.0,
+                  shear_p=0.0):
+    """Friction from the solved loads (``friction.variant = "loads"``).
+
+    The local traction on the web is the asperity friction on the contact pressure plus the
+    film's shear, tau = mu_c p_c + eta U_s / (h + 2 a lambda) + tau_p, with mu_c =
+    (2/pi) mu_cc atan(U_s/C) at every gap (no jump at h_c), ``slip_length`` = 2 a lambda
+    (first-order slip lowers the Couette shear) and ``shear_p`` the pressure-driven part
+    -(h/2) dp/dx; mu(x) = tau / p_bar with p_bar = T_eff/R. Unlike Eq. 28 the film's shear is
+    not weighted by the film's share of the load: a film shears whatever it carries.
+
+    Returns the arrays of :func:`local_friction` (``chi_c`` = min(p_c/p_bar, 1), ``mu_f`` the
+    film's part tau_film/p_bar; ``regime`` by the gap against ``h_edge`` and 3 sigma).
+
+    >>> out = load_friction(1e-3, 0.0, p_bar=1454.5, U_s=20.0, eta=1.81e-5, mu_cc=0.3,
+    ...                     C=0.4, h_edge=4.9e-6, sigma=4e-6)
+    >>> round(float(out["mu"]), 6)       # Couette shear eta U / h over p_bar
+    0.000249
+    """
+    h = np.asarray(h, dtype=float)
+    p_c = np.asarray(p_c, dtype=float)
+    mu_c = mu_boundary(U_s, mu_cc, C) + 0.0 * h
+    with np.errstate(divide="ignore"):
+        tau_f = np.where(h + slip_length > 0.0,
+                         eta * U_s / np.where(h + slip_length > 0.0, h + slip_length, 1.0),
+                         np.inf) + shear_p
+    mu_f = tau_f / p_bar
+    return {"chi_c": np.minimum(p_c / p_bar, 1.0), "mu_c": mu_c, "mu_f": mu_f,
+            "mu": mu_c * p_c / p_bar + mu_f, "regime": regime_code(h, h_edge, sigma)}
+
+
+def friction_for(case, h, resting: bool = False, p=None, dpdx=None) -> dict:
+    """Local friction at gaps ``h`` [m] with every constant taken from ``case`` (a
+    :class:`webfem.case.Case`) and its friction model (``case.friction_variant``): the
+    paper's Eqs. 13, 28-30 (:func:`local_friction`, ``resting`` as there) or the solved
+    loads (:func:`load_friction`, with the absolute film pressure ``p`` [Pa] for the slip
+    length (default p_a) and the pressure gradient ``dpdx`` [Pa/m] (default 0))."""
+    w = case.web
+    if case.friction_variant == "loads":
+        from .contact import contact_pressure
+
+        h = np.asarray(h, dtype=float)
+        p_a = case.air.ambient_pressure
+        p = p_a if p is None else np.asarray(p, float)
+        slip = (2.0 * SLIP_COEFFICIENT * case.air.mean_free_path * p_a / p
+                if case.slip_model == "first-order" else 0.0)
+        shear_p = 0.0 if dpdx is None else -0.5 * h * np.asarray(dpdx, float)
+        return load_friction(
+            h, contact_pressure(h, w.modulus_thickness, case.sigma, w.thickness,
+                                case.friction.distribution),
+            p_bar=case.p_bar, U_s=case.U_slide, eta=case.air.viscosity,
+            mu_cc=case.friction.mu_cc, C=case.friction.speed_constant,
+            h_edge=resting_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
+                               case.friction.distribution, RESTING_SHARE if resting else 1.0),
+            sigma=case.sigma, slip_length=slip, shear_p=shear_p)
+    return local_friction(h, R=case.roller.radius, T=case.tension_eff, U_s=case.U_slide,
+                          eta=case.air.viscosity, E_b=w.modulus_thickness,
+                          sigma=case.sigma, t=w.thickness, mu_cc=case.friction.mu_cc,
+                          C=case.friction.speed_constant, variant=case.friction_variant,
                           distribution=case.friction.distribution, resting=resting)
+
+
+#: Burgdorfer's first-order slip coefficient a (full accommodation of the air molecules).
+SLIP_COEFFICIENT = 1.0
 
 
 _EULER_GAMMA = 0.5772156649015329
@@ -225,3 +281,46 @@ def delta_T_from_mu(mu, T, B):
 def mu_from_delta_T(delta_T, T, B):
     """Friction coefficient from a measured tension increase, mu = ln(1 + dT/T) / B (Eq. 31)."""
     return np.log1p(np.asarray(delta_T, dtype=float) / T) / B
+
+
+def wrap_average_loads(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
+                       distribution="exponential", slip_length=0.0, n=32):
+    """Wrap average of the "loads" friction (:func:`load_friction`, no pressure-gradient
+    shear) over a linear gap from ``h_in`` to ``h_out``, for the closed form.
+
+    Where the linear gap falls below h_c the web rests on its asperities at h_c (as the FE
+    models find), so the gap is taken as max(h, h_c) there; Gauss-Legendre quadrature with
+    ``n`` points on each piece between h_c and 3 sigma. Arrays broadcast over operating points.
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in
+                                   (h_in, h_out, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
+                                    slip_length)))
+    h_in, h_out, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, slip_length = \
+        (a[..., None] for a in arrays)
+    p_bar = T / R
+    h_c = contact_gap(p_bar, E_b, sigma, t, distribution)
+    span = h_out - h_in
+    flat = np.abs(span) < 1e-300
+    cuts = [np.zeros_like(h_in), np.ones_like(h_in)]
+    for level in (h_c, 3.0 * sigma):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cuts.append(np.clip(np.where(flat, 0.0, (level - h_in) / np.where(flat, 1.0, span)),
+                                0.0, 1.0))
+    cuts = np.sort(np.concatenate(cuts, axis=-1), axis=-1)
+    g, gw = np.polynomial.legendre.leggauss(n)
+    total = np.zeros(h_in.shape[:-1])
+    shares = np.zeros((3,) + total.shape)
+    for j in range(cuts.shape[-1] - 1):
+        a, b = cuts[..., j:j + 1], cuts[..., j + 1:j + 2]
+        s = 0.5 * (a + b) + 0.5 * (b - a) * g
+        wts = 0.5 * (b - a) * gw
+        h = np.maximum(h_in + span * s, np.maximum(h_c, 0.0))
+        from .contact import contact_pressure
+        loc = load_friction(h, contact_pressure(h, E_b, sigma, t, distribution), p_bar=p_bar,
+                            U_s=U_s, eta=eta, mu_cc=mu_cc, C=C, h_edge=h_c, sigma=sigma,
+                            slip_length=slip_length)
+        total += np.sum(loc["mu"] * wts, axis=-1)
+        for k in range(3):
+            shares[k] += np.sum((loc["regime"] == k) * wts, axis=-1)
+    return {"mu": total, "share_boundary": shares[0], "share_mixed": shares[1],
+            "share_fluid": shares[2]}

@@ -74,5 +74,6 @@ def contact_overload(case) -> str | None:
         return None
     return (f"the wrap pressure T/R = {case.p_bar:.4g} Pa exceeds what the "
             f"{case.friction.distribution} asperity contact law carries at h = 0 "
-            f"({p0:.4g} Pa); lower web.tension below {p0 * case.roller.radius:.4g} N/m or "
+            f"({p0:.4g} Pa); lower web.tension below "
+            f"{p0 * case.roller.radius + case.web_inertia:.4g} N/m or "
             "raise web.modulus_thickness or web.roughness")

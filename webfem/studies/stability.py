@@ -123,9 +123,9 @@ def run(case: Case, quick: bool = False,
     for contact in (True, False):
         for u in speeds:
             c = case.updated({"roller.speed": u})
-            rows.append({"study": "contact", "method": f"Newton, contact {'on' if contact else 'off'}",
-                         "model": "fe1d", "speed": u, "wrap_deg": case.wrap.angle_deg,
-                         "width": case.web.width, "level": 0,
+            method = f"Newton, contact {'on' if contact else 'off'}"
+            rows.append({"study": "contact", "method": method, "model": "fe1d", "speed": u,
+                         "wrap_deg": case.wrap.angle_deg, "width": case.web.width, "level": 0,
                          **attempt(c, "fe1d", {"contact": contact})})
     widths = (0.02, 0.1) if quick else (0.01, 0.02, 0.035, 0.1, 0.3)
     for width in widths:

@@ -3,13 +3,15 @@
 :func:`run` writes every finished point to the sweep's CSV at once; a re-run of the same
 sweep continues where the last one stopped; a lock keeps two sweeps from writing one file.
 
-* :mod:`~webfem.sweeps.runner`: :func:`run`, the serial, process and Dask execution.
+* :mod:`~webfem.sweeps.runner`: :func:`run`: resume, lock, serial or parallel execution.
+* :mod:`~webfem.sweeps.workers`: what runs in worker processes or on Dask.
 * :mod:`~webfem.sweeps.store`: the CSV, its sidecar and lock, resuming.
 * :mod:`~webfem.sweeps.table`: the CSV's columns, rows from results, reading rows back.
-* :mod:`~webfem.sweeps.files`: atomic writes with the user's umask, hidden temporary files.
+* :mod:`webfem.files` (shared with io): atomic writes with the user's umask, hidden temporary files.
 """
 
-from .runner import PointError, SweepInterrupted, run, solve_chunk
+from .runner import SweepInterrupted, run
+from .workers import PointError, solve_chunk
 from .table import ROW_KEYS, sweep_rows
 
 __all__ = ["run", "solve_chunk", "SweepInterrupted", "PointError", "ROW_KEYS", "sweep_rows"]

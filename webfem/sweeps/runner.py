@@ -21,20 +21,22 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..api import solve_along, sweep as sweep_in_memory
+from ..api import sweep as sweep_in_memory
 from ..errors import InputError
 from ..models.registry import make_options
 from ..result import Result
 from .store import Store, SweepLock, point_key, signature
 from .table import failure_row, sweep_rows, typed
+from .workers import Dask, PointError, Processes, solve_path
 
-__all__ = ["run", "solve_chunk", "SweepInterrupted", "PointError"]
+__all__ = ["run", "SweepInterrupted", "CHUNK"]
 
+#: Default most points per parallel task: each chunk's first point starts cold, which costs
+#: iterations; longer chunks cost balance at the end and more work lost to Ctrl-C.
+CHUNK = 10
 #: Upper bound on ``workers`` (each is a process holding a model's matrices).
 MAX_WORKERS = 256
 _DASK_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://[^\s/]+$")
-#: Seconds to wait for a Dask scheduler before giving up.
-DASK_TIMEOUT_S = 10
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -48,13 +50,6 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 @dataclass(frozen=True)
-class PointError:
-    """A point whose solve raised instead of answering (recorded as not converged)."""
-
-    message: str
-
-
-@dataclass(frozen=True)
 class _Point:
     series: int
     index: int
@@ -63,40 +58,11 @@ class _Point:
     case: object
 
 
-def _solve_path(cases, model: str, options):
-    """``solve_along`` over ``cases``, going on after a point that raises: it becomes a
-    :class:`PointError` and the next point starts cold (one bad point must not cost the
-    rest of the sweep). Input errors are the caller's and propagate."""
-    i = 0
-    while i < len(cases):
-        try:
-            for res in solve_along(cases[i:], model, options):
-                i += 1
-                yield res
-        except InputError:
-            raise
-        except Exception as err:   # noqa: BLE001 - recorded in the row, the sweep goes on
-            i += 1
-            yield PointError(f"{type(err).__name__}: {err}")
-
-
-def solve_chunk(cases, model: str, options, fields: bool = True) -> list:
-    """Solve consecutive points of one series in a worker, with continuation.
-
-    Returns one item per case: the slim (picklable) :class:`~webfem.result.Result`, only
-    its summary when ``fields`` is False (less to send back), or a :class:`PointError`.
-    """
-    out = []
-    for res in _solve_path(list(cases), model, options):
-        if isinstance(res, Result):
-            res = res.slim() if fields else res.summary
-        out.append(res)
-    return out
-
-
 def _checked(spec, workers, chunk, dask) -> list[_Point]:
     """The sweep's points, after checking the arguments (input errors before any work)."""
     for name, value, hi in (("workers", workers, MAX_WORKERS), ("chunk", chunk, None)):
+        if name == "chunk" and value is None:
+            continue
         if isinstance(value, bool) or not isinstance(value, int) or value < 1 or (
                 hi is not None and value > hi):
             raise InputError(f"{name} = {value!r} is out of range: must be an integer >= 1"
@@ -120,88 +86,30 @@ def _checked(spec, workers, chunk, dask) -> list[_Point]:
     return points
 
 
-class _Dask:
-    """A Dask client (and the LocalCluster it started), connected before any file is
-    touched: an unreachable scheduler is an input error within ``DASK_TIMEOUT_S``."""
-
-    def __init__(self, address: str, workers: int):
-        try:
-            from dask.distributed import Client, LocalCluster
-        except ImportError:
-            raise InputError(f"dask = {address!r} needs the 'distributed' package "
-                             "(pip install distributed)") from None
-        self.cluster = None
-        if address == "local":
-            self.cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                        processes=True, dashboard_address=None)
-            self.client = Client(self.cluster)
-            return
-        try:
-            self.client = Client(address, timeout=f"{DASK_TIMEOUT_S}s")
-        except Exception as err:   # noqa: BLE001 - refused, timed out, or not a scheduler
-            reason = (str(err).strip().splitlines() or [type(err).__name__])[0]
-            raise InputError(f"dask = {address!r}: no Dask scheduler answered within "
-                             f"{DASK_TIMEOUT_S} s ({reason})") from None
-
-    def run(self, tasks, record):
-        from dask.distributed import as_completed
-        futures = {}
-        try:
-            futures = {self.client.submit(solve_chunk, *args, pure=False): chunk
-                       for chunk, args in tasks}
-            for fut in as_completed(list(futures)):
-                record(futures[fut], fut.result())
-        finally:
-            for fut in futures:
-                fut.cancel()
-
-    def close(self):
-        try:
-            self.client.close()
-        finally:
-            if self.cluster is not None:
-                self.cluster.close()
-
-
-class _Processes:
-    """A pool of local worker processes, ended at once on Ctrl-C."""
-
-    def __init__(self, workers: int):
-        from concurrent.futures import ProcessPoolExecutor
-        self.pool = ProcessPoolExecutor(max_workers=workers)
-
-    def run(self, tasks, record):
-        from concurrent.futures import as_completed
-        futures = {}
-        try:
-            futures = {self.pool.submit(solve_chunk, *args): chunk for chunk, args in tasks}
-            for fut in as_completed(futures):
-                record(futures[fut], fut.result())
-        except BaseException:
-            for fut in futures:
-                fut.cancel()
-            # running chunks would finish first: end the workers (no public API before 3.14)
-            for proc in list((getattr(self.pool, "_processes", None) or {}).values()):
-                proc.terminate()
-            raise
-
-    def close(self):
-        self.pool.shutdown(wait=True, cancel_futures=True)
+def _auto_chunk(points: int, workers: int) -> int:
+    """At most :data:`CHUNK`, and at least two chunks per worker when points are few."""
+    return max(1, min(CHUNK, -(-points // (2 * workers))))
 
 
 def _chunks(todo: list[int], points: list[_Point], size: int) -> list[list[int]]:
-    """Consecutive points of one series, at most ``size`` each (continuation inside)."""
-    out: list[list[int]] = []
+    """Consecutive points of one series in chunks of at most ``size``, of equal lengths
+    (10 points in chunks of at most 4: 4, 3, 3), so the workers finish together."""
+    runs: list[list[int]] = []
     for n in todo:
-        if out and points[out[-1][-1]].series == points[n].series and len(out[-1]) < size:
-            out[-1].append(n)
+        if runs and points[runs[-1][-1]].series == points[n].series:
+            runs[-1].append(n)
         else:
-            out.append([n])
+            runs.append([n])
+    out = []
+    for series in runs:
+        parts = -(-len(series) // size)
+        bounds = [round(i * len(series) / parts) for i in range(parts + 1)]
+        out += [series[a:b] for a, b in zip(bounds, bounds[1:])]
     return out
 
 
 def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
-        dask: str | None = None, chunk: int = 4,
+        dask: str | None = None, chunk: int | None = None,
         progress: Callable[[int, int], None] | None = None, vtu=None) -> list[dict]:
     """Run (or resume) a sweep, appending each point to ``out_csv`` as it finishes.
 
@@ -220,8 +128,9 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     workers, dask, chunk
         ``workers`` local processes (1: serial with continuation) or a Dask cluster
         (``"local"`` or ``"tcp://host:port"``); parallel runs send chunks of up to
-        ``chunk`` consecutive points of a series (an interruption loses at most the
-        running chunks).
+        ``chunk`` consecutive points of a series (default: :data:`CHUNK`, fewer when
+        there are few points), solved with
+        continuation inside (an interruption loses at most the running chunks).
     progress : callable, optional
         ``progress(finished, total)`` after each point solved.
     vtu : optional
@@ -245,7 +154,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     Examples
     --------
     >>> import tempfile, webfem
-    >>> from webfem.sweepspec import Sweep
+    >>> from webfem.case import Sweep
     >>> spec = Sweep("roller.speed", (20.0, 30.0), (("base", webfem.Case()),))
     >>> rows = run(spec, "closed-form", tempfile.mkdtemp() + "/s.csv")
     >>> [(r["value"], r["converged"]) for r in rows]
@@ -260,16 +169,16 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     keys = {point_key(p.label, p.value): n for n, p in enumerate(points)}
     total = len(points)
     lock = SweepLock(out_csv, sig)
-    lock.acquire()
     saved: set[int] = set()
     engine = None
     try:
+        lock.acquire()
         done = store.load(keys)
         saved.update(done)
         todo = [n for n, p in enumerate(points) if n not in done
                 or (vtu is not None and vtu.missing(p.series, p.index))]
         if todo and model != "closed-form" and (dask is not None or workers > 1):
-            engine = _Dask(dask, workers) if dask is not None else _Processes(workers)
+            engine = Dask(dask, workers) if dask is not None else Processes(workers)
         store.start(done)
         finished = total - len(todo)
 
@@ -282,17 +191,18 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
                 if vtu is not None and isinstance(res, Result):
                     vtu.write(p.series, p.index, p.label, p.value, res)
                 row = sweep_rows([(p.label, p.value, res)], spec.parameter)[0]
-            if row["converged"]:
-                saved.add(n)
             if row["converged"] or n not in done:   # a failed re-solve keeps the old row
                 store.append(row)
+            if row["converged"]:
+                saved.add(n)
             finished += 1
             if progress:
                 progress(finished, total)
 
         if not todo:
             pass
-        elif model == "closed-form":   # vectorised: every point at once
+        elif model == "closed-form" and vtu is None:   # vectorised: every point at once
+            # (its results carry the gap at the wrap's ends only: VTU files go point by point)
             wanted = set(todo)
             for label, value, res in sweep_in_memory(spec, model, options=opts):
                 n = keys[point_key(label, value)]
@@ -301,12 +211,12 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
         elif engine is None:
             for si in sorted({points[n].series for n in todo}):
                 mine = [n for n in todo if points[n].series == si]
-                for n, res in zip(mine, _solve_path([points[n].case for n in mine],
+                for n, res in zip(mine, solve_path([points[n].case for n in mine],
                                                     model, opts)):
                     record(n, res)
         else:
             tasks = [(ch, ([points[n].case for n in ch], model, opts, vtu is not None))
-                     for ch in _chunks(todo, points, chunk)]
+                     for ch in _chunks(todo, points, chunk or _auto_chunk(len(todo), workers))]
 
             def record_chunk(ch, results):
                 for n, res in zip(ch, results):
@@ -320,7 +230,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
             store.close()
             if engine is not None:
                 engine.close()
-            if vtu is not None:
+            if vtu is not None and lock.held:
                 vtu.close()
         finally:
             lock.release()

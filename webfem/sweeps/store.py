@@ -23,10 +23,14 @@ import uuid
 from pathlib import Path
 
 from ..errors import InputError
-from .files import pid_alive, remove_stale_temps, temp_path, write_text
+from ..files import pid_alive, remove_stale_temps, temp_path, write_text
 from .table import ROW_KEYS, Table, format_row, read_table, write_csv
 
 __all__ = ["signature", "signature_hash", "SweepLock", "Store", "point_key"]
+
+#: Tokens of the locks this process holds (a lock file of this pid with another token was
+#: left behind, e.g. by a Ctrl-C while it was being taken, and is stale).
+_HELD: set[str] = set()
 
 
 def signature(spec, model: str, options) -> dict:
@@ -46,6 +50,19 @@ def signature_hash(sig: dict) -> str:
 def point_key(label, value) -> tuple[str, str]:
     """A point's identity in the CSV: series label and the value's exact text."""
     return str(label), repr(float(value))
+
+
+def _by_point(rows, keys: dict) -> dict[int, dict]:
+    """Rows by point index (the last row of a point wins); rows of no point are left out."""
+    out = {}
+    for row in rows:
+        try:
+            index = keys.get(point_key(row["series"], row["value"]))
+        except (KeyError, TypeError, ValueError):
+            continue
+        if index is not None:
+            out[index] = row
+    return out
 
 
 class SweepLock:
@@ -107,6 +124,8 @@ class SweepLock:
                 return True
         if other.get("host") != self.info["host"]:
             return False   # cannot see that host's processes
+        if other.get("pid") == os.getpid():   # this process: held unless it was left behind
+            return other.get("token") not in _HELD
         try:
             return not pid_alive(int(other["pid"]), float(other.get("time", 0)) or None)
         except (KeyError, TypeError, ValueError):
@@ -135,6 +154,7 @@ class SweepLock:
             for _ in range(5):
                 if self._create():
                     self.held = True
+                    _HELD.add(self.info["token"])
                     return
                 other = self._read()
                 if other is None:
@@ -145,6 +165,10 @@ class SweepLock:
         except PermissionError as err:
             raise InputError(f"cannot write in {self.path.parent}: permission denied "
                              f"({err.filename})") from None
+        except BaseException:   # e.g. Ctrl-C just after the lock was made: undo it
+            self.held = True
+            self.release()
+            raise
         raise InputError(f"{self.csv_path}: could not take the lock {self.path}; "
                          "another sweep keeps taking it")
 
@@ -162,6 +186,7 @@ class SweepLock:
         if not self.held:
             return
         self.held = False
+        _HELD.discard(self.info["token"])
         if (self._read() or {}).get("token") == self.info["token"]:
             self.path.unlink(missing_ok=True)
 
@@ -211,11 +236,7 @@ class Store:
             return {}
         if table.header != list(ROW_KEYS):
             return {}
-        done = {}
-        for row in table.rows:   # the last row of a point wins
-            index = keys.get(point_key(row["series"], row["value"]))
-            if index is not None:
-                done[index] = row
+        done = _by_point(table.rows, keys)
         return {i: r for i, r in done.items() if r["converged"] == "True"}
 
     def start(self, kept: dict[int, dict]) -> None:
@@ -243,12 +264,7 @@ class Store:
         """Rewrite the CSV with the latest row of every point, in sweep order; returns them
         (strings as in the file)."""
         self.close()
-        table = read_table(self.csv_path)
-        latest = {}
-        for row in table.rows:
-            index = keys.get(point_key(row["series"], row["value"]))
-            if index is not None:
-                latest[index] = row
+        latest = _by_point(read_table(self.csv_path).rows, keys)
         rows = [latest[i] for i in sorted(latest)]
         write_csv(rows, self.csv_path, ROW_KEYS)
         return rows

@@ -6,12 +6,12 @@ dropped; so is any record whose fields do not parse).
 
 Examples
 --------
->>> import webfem
->>> rows = sweep_rows([("base", 30.0, webfem.solve(webfem.Case()))], "roller.speed")
->>> rows[0]["series"], rows[0]["value"], rows[0]["model"]
-('base', 30.0, 'closed-form')
->>> typed(parse_csv(format_header() + format_row(rows[0])).rows)[0]["converged"]
-True
+>>> row = failure_row("base", "roller.speed", 40.0, "fe1d", "LinAlgError: Singular matrix")
+>>> text = format_header() + format_row(row)
+>>> [(r["series"], r["value"], r["converged"]) for r in typed(parse_csv(text).rows)]
+[('base', 40.0, False)]
+>>> parse_csv(text[:-5]).dropped   # a last line cut short
+1
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..result import SUMMARY_KEYS
-from .files import replacing
+from ..files import replacing
 
 __all__ = ["ROW_KEYS", "EXTRA_KEYS", "sweep_rows", "failure_row", "format_header",
            "format_row", "parse_csv", "read_table", "typed", "write_csv"]

@@ -1,0 +1,88 @@
+"""The effects beyond the paper's rig: which a case includes, the key that switches each
+off, and what the closed form cannot carry; and the idler slip check.
+
+Each effect is a named, switchable part of the model (physics.md, "Beyond the paper"):
+
+=====================  ===============================  ====================================
+effect                 on when                          off with
+=====================  ===============================  ====================================
+inertia                the web moves (U_w > 0)          ``web.density = 0``
+bending                D > 0 (default E_m t^3/12)       ``web.bending_stiffness = 0``
+slip                   ``air.slip = "first-order"``     ``air.slip = "none"``
+isothermal-permeation  k > 0, ``web.permeation =        ``web.permeation = "paper"``
+                       "isothermal"``
+load-friction          ``friction.variant = "loads"``   ``friction.variant = "paper"``
+=====================  ===============================  ====================================
+
+``model.physics = "paper"`` switches them all off at once (an explicit D stays).
+
+Examples
+--------
+>>> from webfem import Case
+>>> included(Case())
+('bending', 'slip', 'isothermal-permeation', 'load-friction')
+>>> included(Case().updated({"model.physics": "paper"}))
+()
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
+           "idler_check"]
+
+#: Every effect, in the order tables list them.
+EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction")
+#: The case keys that switch each effect off.
+SWITCH_OFF = {"inertia": {"web.density": 0.0}, "bending": {"web.bending_stiffness": 0.0},
+              "slip": {"air.slip": "none"}, "isothermal-permeation": {"web.permeation": "paper"},
+              "load-friction": {"friction.variant": "paper"}}
+#: What the closed form carries: T_eff (inertia) and the friction from the loads on its
+#: Eq. 21 gap (contact and Couette shear with slip; no pressure-gradient shear).
+CLOSED_FORM_CARRIES = ("inertia", "load-friction")
+
+
+def included(case) -> tuple[str, ...]:
+    """The effects ``case`` asks for (the FE models carry them all)."""
+    on = {"inertia": case.web_inertia > 0.0, "bending": case.bending_used > 0.0,
+          "slip": case.slip_model == "first-order",
+          "isothermal-permeation": (case.permeation_model == "isothermal"
+                                    and case.web.permeability > 0.0),
+          "load-friction": case.friction_variant == "loads"}
+    return tuple(name for name in EFFECTS if on[name])
+
+
+def left_out(case) -> tuple[str, ...]:
+    """The effects ``case`` asks for that the closed form cannot carry."""
+    return tuple(e for e in included(case) if e not in CLOSED_FORM_CARRIES)
+
+
+def idler_check(case, mu_onset: float) -> dict:
+    """Traction an undriven roller needs against what it can carry (physics.md, "Will an
+    idler slip?").
+
+    delta_T_required = (M_d + J |a| / R) / (R L) [N/m]: the bearing and seal drag and the
+    roller's angular acceleration per unit web width. delta_T_available =
+    T_eff (exp(mu_onset B) - 1) with ``mu_onset`` the friction coefficient at the onset of
+    slip (small sliding speed: the boundary friction of Eq. 29 vanishes there, so the caller
+    states it, e.g. mu_cc times the contact share of the wrap load). Returns the keys
+    ``delta_T_required``, ``delta_T_available``, ``slip_margin`` (available / required) and
+    ``mu_onset``, all None when the case states no drag torque and no acceleration.
+
+    >>> from webfem import Case
+    >>> c = Case().updated({"roller.drag_torque": 0.02, "roller.speed": 20.0,
+    ...                     "web.speed": 20.0})
+    >>> out = idler_check(c, 0.3)
+    >>> round(out["delta_T_required"], 3), round(out["slip_margin"], 2)
+    (10.39, 2.2)
+    """
+    R, L = case.roller.radius, case.web.width
+    torque = case.roller.drag_torque + case.roller.inertia * abs(case.web.acceleration) / R
+    if torque <= 0.0:
+        return dict(delta_T_required=None, delta_T_available=None, slip_margin=None,
+                    mu_onset=None)
+    required = torque / (R * L)
+    available = case.tension_eff * math.expm1(mu_onset * case.B)
+    return dict(delta_T_required=required, delta_T_available=available,
+                slip_margin=available / required, mu_onset=mu_onset)

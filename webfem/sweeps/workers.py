@@ -1,0 +1,153 @@
+"""What runs in the workers: :func:`solve_chunk`, and the two ways of running chunks in
+parallel, a local process pool and a Dask cluster.
+
+Worker processes ignore Ctrl-C: the terminal sends SIGINT to the whole process group, and
+the main process alone stops the sweep, then ends its workers (no worker tracebacks).
+"""
+
+from __future__ import annotations
+
+import logging
+import signal
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+from ..api import solve_along
+from ..errors import InputError
+from ..result import Result
+
+__all__ = ["solve_chunk", "PointError", "solve_path", "Processes", "Dask", "DASK_TIMEOUT_S"]
+
+#: Seconds to wait for a Dask scheduler before giving up.
+DASK_TIMEOUT_S = 10
+
+
+@dataclass(frozen=True)
+class PointError:
+    """A point whose solve raised instead of answering (recorded as not converged)."""
+
+    message: str
+
+
+def solve_path(cases, model: str, options):
+    """``solve_along`` over ``cases``, going on after a point that raises: it becomes a
+    :class:`PointError` and the next point starts cold (one bad point must not cost the
+    rest of the sweep). Input errors are the caller's and propagate."""
+    i = 0
+    while i < len(cases):
+        try:
+            for res in solve_along(cases[i:], model, options):
+                i += 1
+                yield res
+        except InputError:
+            raise
+        except Exception as err:   # noqa: BLE001 - recorded in the row, the sweep goes on
+            i += 1
+            yield PointError(f"{type(err).__name__}: {err}")
+
+
+def solve_chunk(cases, model: str, options, fields: bool = True) -> list:
+    """Solve consecutive points of one series in a worker, with continuation.
+
+    Returns one item per case: the slim (picklable) :class:`~webfem.result.Result`, only
+    its summary when ``fields`` is False (less to send back), or a :class:`PointError`.
+    """
+    out = []
+    for res in solve_path(list(cases), model, options):
+        if isinstance(res, Result):
+            res = res.slim() if fields else res.summary
+        out.append(res)
+    return out
+
+
+class Dask:
+    """A Dask client (and the LocalCluster it started), connected before any file is
+    touched: an unreachable scheduler is an input error within ``DASK_TIMEOUT_S``."""
+
+    def __init__(self, address: str, workers: int):
+        try:
+            from dask.distributed import Client, LocalCluster
+        except ImportError:
+            raise InputError(f"dask = {address!r} needs the 'distributed' package "
+                             "(pip install distributed)") from None
+        self.cluster = None
+        if address == "local":
+            # ":0": any free port (the scheduler serves HTTP even without a dashboard)
+            with _sigint_ignored():
+                self.cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                            processes=True, dashboard_address=":0",
+                                            silence_logs=logging.ERROR)
+            self.client = Client(self.cluster)
+            return
+        try:
+            self.client = Client(address, timeout=f"{DASK_TIMEOUT_S}s")
+        except Exception as err:   # noqa: BLE001 - refused, timed out, or not a scheduler
+            reason = (str(err).strip().splitlines() or [type(err).__name__])[0]
+            raise InputError(f"dask = {address!r}: no Dask scheduler answered within "
+                             f"{DASK_TIMEOUT_S} s ({reason})") from None
+
+    def run(self, tasks, record):
+        from dask.distributed import as_completed
+        futures = {}
+        try:
+            futures = {self.client.submit(solve_chunk, *args, pure=False): chunk
+                       for chunk, args in tasks}
+            for fut in as_completed(list(futures)):
+                record(futures[fut], fut.result())
+        finally:
+            for fut in futures:
+                fut.cancel()
+
+    def close(self):
+        try:
+            self.client.close()
+        finally:
+            if self.cluster is not None:
+                self.cluster.close()
+
+
+def _ignore_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextmanager
+def _sigint_ignored():
+    """SIGINT ignored while worker processes start: they inherit the disposition and never
+    see Ctrl-C, which is the main process's to handle (it stops the workers: no worker
+    tracebacks). A Ctrl-C during these seconds is lost (blocking the signal instead is
+    not inherited by Dask's workers)."""
+    try:
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:   # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+class Processes:
+    """A pool of local worker processes (ignoring Ctrl-C), ended at once on Ctrl-C."""
+
+    def __init__(self, workers: int):
+        from concurrent.futures import ProcessPoolExecutor
+        self.pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
+
+    def run(self, tasks, record):
+        from concurrent.futures import as_completed
+        futures = {}
+        try:
+            futures = {self.pool.submit(solve_chunk, *args): chunk for chunk, args in tasks}
+            for fut in as_completed(futures):
+                record(futures[fut], fut.result())
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            # running chunks would finish first: end the workers (no public API before 3.14)
+            for proc in list((getattr(self.pool, "_processes", None) or {}).values()):
+                proc.terminate()
+            raise
+
+    def close(self):
+        self.pool.shutdown(wait=True, cancel_futures=True)
