@@ -2,7 +2,18 @@
 
 from __future__ import annotations
 
-__all__ = ["describe"]
+__all__ = ["describe", "verdict"]
+
+
+def verdict(s) -> str:
+    """The idler's one-line answer from a summary with an idler check."""
+    if s.slip_margin >= 1.0:
+        return (f"  idler holds with margin {s.slip_margin:.2g} (needs {s.delta_T_required:.3g}"
+                f" N/m, can carry {s.delta_T_available:.3g} N/m at mu_onset "
+                f"{s.mu_onset:.3g})")
+    return (f"  idler slips: needs {s.delta_T_required:.3g} N/m, can carry "
+            f"{s.delta_T_available:.3g} N/m (margin {s.slip_margin:.2g}, mu_onset "
+            f"{s.mu_onset:.3g})")
 
 
 def describe(result) -> str:
@@ -21,7 +32,9 @@ def describe(result) -> str:
         f"  h_c = {s.h_c * um:.3f} um, 3 sigma = {3 * s.sigma * um:.3f} um; "
         f"regime {s.regime} (wrap shares: boundary {s.share_boundary:.2f}, "
         f"mixed {s.share_mixed:.2f}, fluid {s.share_fluid:.2f})",
-        f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m",
+        f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
+        + (" (nothing slides, U_s = 0: only the film's pressure-driven shear)"
+           if s.U_slide == 0.0 else ""),
         f"  converged = {s.converged}, iterations = {s.iterations}, "
         f"n_dofs = {s.n_dofs}, time = {s.solve_time_s * 1e3:.3f} ms",
     ]
@@ -33,6 +46,10 @@ def describe(result) -> str:
                else f"{s.estimated_error:.2g} <= {s.tolerance:g}")
         lines.append(f"  model used: {s.model_used} (estimated {s.quantity} error {err}): "
                      f"{s.why}")
+    lines.append(f"  physics: T_eff = {s.T_eff:.4g} N/m, D = {s.bending_stiffness_used:.3g} N m; "
+                 "effects: " + (", ".join(s.effects) or "none (the paper's model)"))
+    if s.slip_margin is not None:
+        lines.append(verdict(s))
     for w in s.warnings:
         lines.append(f"  warning: {w}")
     return "\n".join(lines)

@@ -73,20 +73,22 @@ def _attr(key: str) -> str:
 
 class _ReadOnlyMapping:
     """``obj["name"]``, ``"name" in obj``, ``keys()``, ``get()`` over a frozen dataclass's
-    fields that are set (not None)."""
+    fields: those that are set (not None), or all of them when ``_all_keys`` (a summary
+    answers every key, None where a model does not compute it)."""
 
     _aliases: dict = {}
+    _all_keys = False
 
     def _key_names(self):
         return [self._aliases.get(f.name, f.name) for f in dataclasses.fields(self)
-                if getattr(self, f.name) is not None]
+                if self._all_keys or getattr(self, f.name) is not None]
 
     def __getitem__(self, key: str) -> Any:
         name = _attr(key) if self._aliases else key
         if not isinstance(key, str) or name not in {f.name for f in dataclasses.fields(self)}:
             raise KeyError(key)
         value = getattr(self, name)
-        if value is None:
+        if value is None and not self._all_keys:
             raise KeyError(key)
         return value
 
@@ -103,10 +105,12 @@ class _ReadOnlyMapping:
         return [(k, self[k]) for k in self._key_names()]
 
     def get(self, key: str, default: Any = None) -> Any:
+        """The value, or ``default`` when the key is unknown or its value None."""
         try:
-            return self[key]
+            value = self[key]
         except KeyError:
             return default
+        return default if value is None else value
 
 
 @dataclass(frozen=True, repr=False)
@@ -118,6 +122,7 @@ class Summary(_ReadOnlyMapping):
     """
 
     _aliases = {"lambda_": "lambda"}
+    _all_keys = True
 
     model: str
     h_center: float

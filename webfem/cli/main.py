@@ -20,7 +20,8 @@ from .common import error_line
 __all__ = ["main", "build_parser", "SUBCOMMANDS"]
 
 #: The subcommand modules of this package, in the order ``webfem --help`` lists them.
-SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", "keys")
+SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", "effects",
+               "idler", "keys")
 
 
 def _modules():

@@ -1,66 +1,201 @@
-"""Pictures of the film (pyvista, off screen): pressure and gap over the wrap domain.
+"""Pictures of a solved film (matplotlib, off screen): one PNG, panels on a shared arc axis.
 
-pyvista is imported only when a picture is asked for, so webfem imports without it. Each
-picture is rendered to a hidden temporary name and renamed, so none is ever half written.
+For a 2-D result (fe2d, or auto answering with it) the picture has three aligned panels:
+
+a. the film pressure p - p_a over the arc x and the full width z, on a diverging colour map
+   centred on 0 (red above ambient, blue below); a half-width solve is mirrored;
+b. the gap h along the centre line against the regime levels h_c and 3 sigma;
+c. the local friction coefficient mu(x) in the wrap, over bands showing the local regime.
+
+Results without a film (closed form, fe1d) get panels b and c only. The wrap edges
+x = -+RB/2 are marked in every panel; air is dragged towards +x. Coordinates are drawn in
+millimetres, gaps in micrometres. Nothing here solves: it reads a :class:`~webfem.Result`.
+
+Examples
+--------
+>>> import tempfile, webfem
+>>> result = webfem.solve(webfem.Case(), model="closed-form")
+>>> with tempfile.TemporaryDirectory() as d:
+...     [p.name for p in film_pictures(result, d, "demo")]
+['demo_film.png']
 """
 
 from __future__ import annotations
 
-import os
+import math
 from pathlib import Path
 
-from ..errors import InputError
+import matplotlib
+import numpy as np
 
-__all__ = ["film_pictures"]
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.colors import CenteredNorm  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+from .charts import _save  # noqa: E402
+
+__all__ = ["film_pictures", "film_figure", "REGIME_COLOURS"]
+
+#: Regime code -> (name, band colour), codes as in :data:`webfem.physics.contact.REGIMES`.
+REGIME_COLOURS = {0: ("boundary", "#f4a6a6"), 1: ("mixed", "#f9d98c"), 2: ("fluid", "#b9dcf2")}
+_MM, _UM = 1e3, 1e6
+
+
+def _reach(result) -> float:
+    """Half the drawn arc [m]: the wrap and a few entry lengths either side (the far entry
+    zones are nearly ambient and the gap there grows quadratically)."""
+    case = result.case
+    half = case.roller.radius * case.B / 2
+    x = np.asarray(result.fields["x"], float)
+    return min(half + 4.0 * case.x_scale, float(np.max(np.abs(x))))
+
+
+def _full_width(film):
+    """Vertices, triangles and p - p_a over the full width (mirrored when half was solved)."""
+    pts = np.asarray(film["points"], float)
+    quads = np.asarray(film["quads"], int)
+    p = np.asarray(film["p_rel"], float)
+    tri = np.vstack([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+    if pts[:, 1].min() >= 0.0:   # half width solved: the other half is its mirror image
+        n = len(pts)
+        pts = np.vstack([pts, pts * [1.0, -1.0, 1.0]])
+        tri = np.vstack([tri, tri[:, ::-1] + n])
+        p = np.concatenate([p, p])
+    return pts, tri, p
+
+
+def _edges(ax, half, label=False):
+    for sign, name in ((-1, "inlet edge"), (1, "outlet edge")):
+        ax.axvline(sign * half * _MM, color="0.2", lw=0.8, ls=(0, (4, 2)))
+        if label:
+            ax.annotate(f"wrap {name}", (sign * half * _MM, 1.0), xycoords=("data", "axes fraction"),
+                        xytext=(0, 3), textcoords="offset points", ha="center", va="bottom",
+                        fontsize=7, color="0.2")
+
+
+def _level(ax, value, text, colour):
+    """A horizontal level with its label on the right, just above the line."""
+    ax.axhline(value, color=colour, lw=0.9, zorder=1)
+    ax.annotate(text, (1.0, value), xycoords=("axes fraction", "data"), xytext=(-3, 2),
+                textcoords="offset points", ha="right", va="bottom", fontsize=7, color=colour)
+
+
+def _centre_line(result):
+    """x and h along the centre line: the film's vertices nearest z = 0, else the web's."""
+    film = result.film
+    if film is None:
+        return np.asarray(result.fields["x"], float), np.asarray(result.fields["h"], float)
+    pts = np.asarray(film["points"], float)
+    z0 = pts[np.argmin(np.abs(pts[:, 1])), 1]
+    on = np.isclose(pts[:, 1], z0)
+    order = np.argsort(pts[on, 0])
+    return pts[on, 0][order], np.asarray(film["h"], float)[on][order]
+
+
+def _regime_bands(ax, x, regime, inside):
+    """Background bands coloured by the local regime, inside the wrap only."""
+    x, regime = np.asarray(x, float), np.asarray(regime, int)
+    idx = np.flatnonzero(inside)
+    if idx.size == 0:
+        return
+    start = idx[0]
+    for k in range(1, idx.size + 1):
+        if k == idx.size or regime[idx[k]] != regime[start] or idx[k] != idx[k - 1] + 1:
+            end = idx[k - 1]
+            lo = x[start] if start == idx[0] else 0.5 * (x[start - 1] + x[start])
+            hi = x[end] if end == idx[-1] else 0.5 * (x[end] + x[end + 1])
+            ax.axvspan(lo * _MM, hi * _MM, color=REGIME_COLOURS[int(regime[start])][1],
+                       lw=0, zorder=0)
+            if k < idx.size:
+                start = idx[k]
+
+
+def film_figure(result, path, title: str | None = None) -> Path:
+    """Draw the panels described in the module docstring into ``path`` (PNG); returns it."""
+    s, case = result.summary, result.case
+    half = case.roller.radius * case.B / 2
+    reach = _reach(result)
+    two_d = result.film is not None
+    n = 3 if two_d else 2
+    fig = plt.figure(figsize=(7.6, 2.35 * n + 0.5), layout="constrained")
+    grid = fig.add_gridspec(n, 2, width_ratios=(1.0, 0.025),
+                            height_ratios=(1.15, 1, 0.9)[-n:])
+    axes = [fig.add_subplot(grid[0, 0])]
+    axes += [fig.add_subplot(grid[i, 0], sharex=axes[0]) for i in range(1, n)]
+    used = s.model_used or s.model
+    fig.suptitle(title or f"{used}: film over the wrap (air dragged towards +x)", fontsize=10)
+
+    if two_d:
+        ax = axes[0]
+        pts, tri, p = _full_width(result.film)
+        keep = np.abs(pts[:, 0]) <= reach * 1.02
+        scale = np.max(np.abs(p[keep])) if keep.any() else 1.0
+        mesh = ax.tripcolor(Triangulation(pts[:, 0] * _MM, pts[:, 1] * _MM, tri), p,
+                            shading="gouraud", cmap="RdBu_r",
+                            norm=CenteredNorm(0.0, halfrange=scale or 1.0), rasterized=True)
+        bar = fig.colorbar(mesh, cax=fig.add_subplot(grid[0, 1]))
+        bar.set_label("p - p_a [Pa]", fontsize=8)
+        bar.ax.tick_params(labelsize=7)
+        ax.set_ylabel("z across width [mm]")
+        ax.set_title("a. film pressure above ambient, full width", fontsize=9, loc="left",
+                     pad=12)
+        _edges(ax, half, label=True)
+
+    ax = axes[-2]
+    x, h = _centre_line(result)
+    inside = np.abs(x) <= reach * 1.02
+    ax.plot(x[inside] * _MM, h[inside] * _UM, color="k", lw=1.4, label="gap h")
+    levels = [(s.h_c * _UM, f"h_c = {s.h_c * _UM:.2f} um (mixed below)", "tab:orange"),
+              (3 * s.sigma * _UM, f"3 sigma = {3 * s.sigma * _UM:.2f} um (fluid above)",
+               "tab:blue")]
+    for value, text, colour in levels:
+        if math.isfinite(value):
+            _level(ax, value, text, colour)
+    top = max([3 * s.sigma * _UM, s.h_c * _UM] + [v * _UM for v in (s.h_inlet, s.h_outlet)
+                                                   if math.isfinite(v)])
+    ax.set_ylim(0.0, 1.8 * top)   # the landing zone, not the far entry lengths
+    ax.set_ylabel("gap h [um]")
+    ax.set_title(f"{'b' if two_d else 'a'}. gap along the centre line (above the plot: "
+                 "clipped far entry)", fontsize=9, loc="left")
+    _edges(ax, half, label=not two_d)
+
+    ax = axes[-1]
+    f = result.fields
+    x = np.asarray(f["x"], float)
+    wrap = (np.asarray(f["in_wrap"]) > 0) if "in_wrap" in f else np.abs(x) <= half * (1 + 1e-9)
+    if "regime" in f:
+        _regime_bands(ax, x, f["regime"], wrap)
+    if "mu" in f:
+        ax.plot(x[wrap] * _MM, np.asarray(f["mu"], float)[wrap], color="k", lw=1.3,
+                label="local mu(x)")
+    ax.axhline(s.mu, color="tab:red", lw=0.9, ls=(0, (5, 2)))
+    ax.annotate(f"wrap average mu = {s.mu:.3f}", (0.0, s.mu), xytext=(0, 2),
+                textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                color="tab:red")
+    ax.set_ylim(0.0, None)
+    ax.set_ylabel("friction mu [-]")
+    ax.set_xlabel("x along the arc from the wrap centre [mm]")
+    ax.set_title(f"{'c' if two_d else 'b'}. local friction and regime in the wrap",
+                 fontsize=9, loc="left")
+    handles = [Patch(color=c, label=name) for name, c in REGIME_COLOURS.values()]
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7,
+               title="regime bands", title_fontsize=7, frameon=False)
+    _edges(ax, half)
+    axes[0].set_xlim(-reach * _MM, reach * _MM)
+    for a in axes:
+        a.tick_params(labelsize=8)
+        a.grid(True, alpha=0.25) if a is not axes[0] or not two_d else None
+    for a in axes[:-1]:
+        a.tick_params(labelbottom=False)
+    return _save(fig, path)
 
 
 def film_pictures(result, folder, stem: str | None = None) -> list[Path]:
-    """Render ``STEM_p.png`` (p - p_a) and ``STEM_h.png`` (gap) of a 2-D result; returns paths.
-
-    Coordinates are drawn in millimetres, the gap in micrometres.
-    """
-    import pyvista as pv
-
-    from .vtu import film_mesh
-
-    if result.film is None:
-        raise InputError(f"model {result['model']!r} has no 2-D film to draw: use fe2d")
-    pv.OFF_SCREEN = True
+    """Write ``STEM_film.png`` (the panels of :func:`film_figure`) into ``folder``; returns
+    ``[path]``. The file appears whole or not at all."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     stem = stem or result["model"]
-    mesh = pv.from_meshio(film_mesh(result))
-    case = result.case
-    # the wrap and a few entry lengths either side: the far entry zones are nearly ambient
-    reach = case.roller.radius * case.B / 2 + 4 * case.x_scale
-    mesh = mesh.clip(normal="x", origin=(reach, 0, 0)).clip(normal="-x", origin=(-reach, 0, 0))
-    if mesh.points[:, 1].min() >= 0.0:   # half width solved: mirror for the picture
-        mesh = mesh.merge(mesh.reflect((0, 1, 0), point=(0, 0, 0)))
-    mesh.points *= 1e3
-    mesh.point_data["gap_um"] = mesh.point_data["h"] * 1e6
-    out = []
-    # the gap grows quadratically off the roller: cap its colour range at twice the gap at
-    # the inlet edge so the film's structure in the wrap stays visible
-    h_cap = 2e6 * max(result["h_inlet"], result["h_min"])
-    for name, title, clim in (("p_rel", "p - p_a [Pa]", None),
-                              ("gap_um", "h [um] (colours capped)", (0.0, h_cap))):
-        plotter = pv.Plotter(off_screen=True, window_size=(1100, 500))
-        plotter.add_mesh(mesh, scalars=name, cmap="viridis", clim=clim,
-                         scalar_bar_args={"title": title})
-        plotter.view_xy()
-        plotter.add_text(f"{result['model']}: {title}; x (arc, air dragged to +x) and z "
-                         "(width) in mm; wrap edges at x = -+RB/2", font_size=9)
-        plotter.show_bounds(xtitle="x [mm]", ytitle="z [mm]", font_size=9, n_ylabels=3)
-        plotter.reset_camera(bounds=mesh.bounds)
-        plotter.camera.zoom(1.05)
-        path = folder / f"{stem}_{'p' if name == 'p_rel' else 'h'}.png"
-        tmp = path.with_name(f".tmp-{os.getpid()}-{path.name}")   # ends .png for VTK
-        try:
-            plotter.screenshot(str(tmp))
-            os.replace(tmp, path)
-        finally:
-            plotter.close()
-            if tmp.exists():
-                tmp.unlink()
-        out.append(path)
-    return out
+    return [film_figure(result, folder / f"{stem}_film.png")]

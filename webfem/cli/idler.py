@@ -1,0 +1,51 @@
+"""``webfem idler``: will an idler slip? Its slip margin against line speed, and a chart."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..idler import margin_curve
+from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
+                     options_epilog, output_folder, positive_int, print_json)
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser(
+        "idler", formatter_class=HELP_FORMATTER, epilog=options_epilog(),
+        help="an idler's slip margin (traction available / required) against line speed")
+    add_case_arguments(p)
+    p.add_argument("--min-speed", type=float, default=1.0, help="from (m/s, default 1)")
+    p.add_argument("--max-speed", type=float, default=20.0, help="to (m/s, default 20)")
+    p.add_argument("--num", type=positive_int, default=20, help="speeds (default 20)")
+    p.add_argument("--out", metavar="DIR", help="write CASE_idler.png into DIR")
+    p.add_argument("--json", action="store_true", help="the curve as JSON")
+
+
+def run(args) -> int:
+    case = case_from(args)
+    folder = output_folder(args.out, "--out") if args.out else None
+    from ..errors import InputError
+    if not 0.0 < args.min_speed < args.max_speed:
+        raise InputError(f"--min-speed {args.min_speed:g} and --max-speed {args.max_speed:g}"
+                         ": need 0 < min < max [m/s]")
+    speeds = np.linspace(args.min_speed, args.max_speed, args.num)
+    curve = margin_curve(case, speeds, args.model, model_options(args))
+    if args.json:
+        print_json(curve.to_dict() | {"slip_speed": curve.slip_speed()})
+    else:
+        print(f"idler slip check ({curve.model}): line speed [m/s], delta_T required and "
+              "available [N/m], margin")
+        for u, r, a, m in zip(curve.speeds, curve.delta_T_required, curve.delta_T_available,
+                              curve.slip_margin):
+            print(f"  {u:8.3g} {r:10.3f} {a:10.3f} {m:9.3g}  {'holds' if m >= 1 else 'SLIPS'}")
+        slip = curve.slip_speed()
+        print("  the idler holds over the whole range" if slip is None
+              else f"  the idler slips above about {slip:.3g} m/s")
+    if folder is not None:
+        from ..io.idler_chart import idler_chart
+        path = idler_chart(curve, folder / f"{Path(args.case).stem}_idler.png",
+                           title=f"{Path(args.case).stem}: will the idler slip?")
+        print(f"wrote {path}")
+    return 0

@@ -1,0 +1,107 @@
+"""What each effect does: the case solved with each effect it includes switched off in turn.
+
+"Model no more than a scene needs": the table says which effects move the answer for a
+case and by how much, so a user sees which the scene needs (:mod:`webfem.physics.effects`
+names the effects and the keys that switch them off).
+
+Examples
+--------
+>>> from webfem import Case
+>>> table = effects_table(Case().updated({"roller.speed": 40.0}), "closed-form")
+>>> [row.effect for row in table.rows]
+['all included', 'load-friction']
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .api import solve
+from .case import Case
+from .models.registry import make_options
+from .physics.effects import SWITCH_OFF, included
+
+__all__ = ["EffectRow", "EffectsTable", "effects_table"]
+
+
+@dataclass(frozen=True)
+class EffectRow:
+    """One solve: the ``effect`` switched off (or "all included"), the keys changed, the
+    gaps [m] and mu, and their relative changes against the solve with every effect."""
+
+    effect: str
+    switched: dict
+    h_center: float
+    h_min: float
+    mu: float
+    d_h_center: float
+    d_h_min: float
+    d_mu: float
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+@dataclass(frozen=True)
+class EffectsTable:
+    """The rows of :func:`effects_table`, the model that answered, and the effects of the
+    case that this model cannot carry (switching them off changes nothing there)."""
+
+    model: str
+    rows: tuple[EffectRow, ...]
+    not_carried: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        return {"model": self.model, "rows": [r.to_dict() for r in self.rows],
+                "not_carried": list(self.not_carried)}
+
+    def text(self) -> str:
+        """A fixed-width table: how much switching each effect off moves the answer."""
+        lines = [f"effects on {self.model}: the answer with every effect, then with each "
+                 "one switched off (change relative to all included)",
+                 f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
+                 f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>9}"]
+        for r in self.rows:
+            lines.append(f"  {r.effect:<24}{r.h_center * 1e6:>12.3f}{r.h_min * 1e6:>10.3f}"
+                         f"{r.mu:>9.4f}{_pct(r.d_h_center):>12}{_pct(r.d_h_min):>10}"
+                         f"{_pct(r.d_mu):>9}")
+        if self.not_carried:
+            lines.append(f"  ({', '.join(self.not_carried)}: not carried by {self.model})")
+        return "\n".join(lines)
+
+
+def _pct(x: float) -> str:
+    return "-" if x == 0.0 else f"{100 * x:+.2f} %"
+
+
+def _rel(a: float, b: float) -> float:
+    return (a - b) / b if b else 0.0
+
+
+def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
+                  **values) -> EffectsTable:
+    """Solve ``case`` with every effect it includes, then with each switched off in turn.
+
+    ``progress(done, total)`` is called after each solve. Raises what :func:`webfem.solve`
+    raises (an effect switched off may leave a case with no admissible solution).
+    """
+    opts = make_options(model, options, **values)
+    effects = included(case)
+    total = 1 + len(effects)
+    base = solve(case, model, options=opts)
+    carried = tuple(base.summary.effects)
+    rows = [EffectRow("all included", {}, base["h_center"], base["h_min"], base["mu"],
+                      0.0, 0.0, 0.0)]
+    if progress:
+        progress(1, total)
+    for i, effect in enumerate(effects, start=2):
+        switched = SWITCH_OFF[effect]
+        r = solve(case.updated(switched), model, options=opts)
+        rows.append(EffectRow(effect, dict(switched), r["h_center"], r["h_min"], r["mu"],
+                              _rel(r["h_center"], base["h_center"]),
+                              _rel(r["h_min"], base["h_min"]), _rel(r["mu"], base["mu"])))
+        if progress:
+            progress(i, total)
+    missing = tuple(e for e in effects if e not in carried)
+    used = base.summary.model_used or base.summary.model
+    return EffectsTable(used, tuple(rows), missing)

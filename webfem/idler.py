@@ -1,0 +1,71 @@
+"""Will an idler slip? The slip margin of an undriven roller against line speed.
+
+An idler turns with the web (U_r = U_w): :func:`margin_curve` solves the case at line speeds
+``speeds`` with both speeds set to each one, through the one continuation loop, and returns
+the traction needed and available at each (:func:`webfem.physics.effects.idler_check`).
+
+Examples
+--------
+>>> from webfem import load_case
+>>> curve = margin_curve(load_case("cases/idler.toml"), [5.0, 15.0], "closed-form")
+>>> [round(m, 2) for m in curve.slip_margin]
+[6.37, 0.02]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .api import solve_along
+from .case import Case
+from .errors import InputError
+
+__all__ = ["MarginCurve", "margin_curve"]
+
+
+@dataclass(frozen=True)
+class MarginCurve:
+    """Line speeds [m/s] and, at each, delta_T required and available [N/m], the slip margin
+    (available / required), mu at the onset of slip, and whether the solve converged."""
+
+    model: str
+    speeds: tuple[float, ...]
+    delta_T_required: tuple[float, ...]
+    delta_T_available: tuple[float, ...]
+    slip_margin: tuple[float, ...]
+    mu_onset: tuple[float, ...]
+    converged: tuple[bool, ...]
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+    def slip_speed(self) -> float | None:
+        """The first line speed where the margin falls below 1 (linear interpolation), or
+        None when the idler holds over the whole range."""
+        m = np.asarray(self.slip_margin, float)
+        below = np.nonzero(m < 1.0)[0]
+        if below.size == 0:
+            return None
+        i = int(below[0])
+        if i == 0:
+            return self.speeds[0]
+        u0, u1, m0, m1 = self.speeds[i - 1], self.speeds[i], m[i - 1], m[i]
+        return float(u0 + (1.0 - m0) * (u1 - u0) / (m1 - m0))
+
+
+def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
+                 **values) -> MarginCurve:
+    """The idler's slip margin at each line speed (roller and web at that speed)."""
+    if case.roller.drag_torque <= 0.0 and case.roller.inertia * case.web.acceleration == 0.0:
+        raise InputError("the case states no idler load: set roller.drag_torque [N m] or "
+                         "roller.inertia [kg m^2] with web.acceleration [m/s^2]")
+    speeds = [float(u) for u in speeds]
+    cases = [case.updated({"roller.speed": u, "web.speed": u}) for u in speeds]
+    results = list(solve_along(cases, model, options, **values))
+    pick = {k: tuple(float(r[k]) for r in results) for k in
+            ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")}
+    used = results[0].summary.model_used or results[0]["model"]
+    return MarginCurve(used, tuple(speeds), converged=tuple(bool(r["converged"])
+                                                           for r in results), **pick)
