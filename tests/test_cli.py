@@ -14,8 +14,9 @@ CASES = sorted((Path(__file__).parent.parent / "cases").glob("*.toml"))
 
 
 def test_solve_json_keys(capsys):
-    assert main(["solve", "cases/base.toml", "--json"]) == 0
+    assert main(["solve", "cases/base.toml", "--json", "--model", "closed-form"]) == 0
     data = json.loads(capsys.readouterr().out)
+    assert data["units"] == "SI"
     for key in SUMMARY_KEYS:
         assert key in data
     assert data["model"] == "closed-form" and data["converged"] is True
@@ -23,9 +24,11 @@ def test_solve_json_keys(capsys):
 
 
 def test_solve_set_override(capsys):
-    main(["solve", "cases/base.toml", "--json", "--set", "roller.speed=40"])
+    main(["solve", "cases/base.toml", "--json", "--model", "closed-form", "--set",
+          "roller.speed=40"])
     fast = json.loads(capsys.readouterr().out)
-    main(["solve", "cases/base.toml", "--json", "--set", "roller.speed=5"])
+    main(["solve", "cases/base.toml", "--json", "--model", "closed-form", "--set",
+          "roller.speed=5"])
     slow = json.loads(capsys.readouterr().out)
     assert fast["h_inlet"] > slow["h_inlet"]
     assert fast["mu"] < 0.03 < slow["mu"]
@@ -39,7 +42,8 @@ def test_bad_input_exits_2_with_message(capsys):
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])
 def test_every_case_file_sweeps(case, tmp_path, capsys):
-    assert main(["sweep", str(case), "--out", str(tmp_path), "--quiet"]) == 0
+    assert main(["sweep", str(case), "--model", "closed-form", "--out", str(tmp_path),
+                 "--quiet"]) == 0
     csv_path = tmp_path / f"{case.stem}_closed-form.csv"
     png = tmp_path / f"{case.stem}_closed-form.png"
     assert png.stat().st_size > 10_000
@@ -52,8 +56,8 @@ def test_every_case_file_sweeps(case, tmp_path, capsys):
 def test_base_case_shows_paper_trend(tmp_path):
     """With the paper's physics the base case rises to about 0.3 at low speed, falls
     through mixed, ends below 0.03."""
-    main(["sweep", "cases/base.toml", "--out", str(tmp_path), "--quiet", "--set",
-          "model.physics=paper"])
+    main(["sweep", "cases/base.toml", "--model", "closed-form", "--out", str(tmp_path),
+          "--quiet", "--set", "model.physics=paper"])
     rows = list(csv.DictReader((tmp_path / "base_closed-form.csv").open()))
     mu = [float(r["mu"]) for r in rows]
     speed = [float(r["value"]) for r in rows]
@@ -146,8 +150,8 @@ def test_sweep_spacing_flags_are_checked(tmp_path, capsys):
 
 
 def test_sweep_num_log_respaces(tmp_path):
-    assert main(["sweep", "cases/base.toml", "--out", str(tmp_path), "--num", "5", "--log",
-                 "--quiet"]) == 0
+    assert main(["sweep", "cases/base.toml", "--model", "closed-form", "--out", str(tmp_path),
+                 "--num", "5", "--log", "--quiet"]) == 0
     rows = list(csv.DictReader((tmp_path / "base_closed-form.csv").open()))
     values = [float(r["value"]) for r in rows]
     spec = load_sweep("cases/base.toml")
@@ -215,7 +219,8 @@ def test_interrupted_sweep_says_what_was_saved(monkeypatch, tmp_path, capsys):
         err.saved, err.total, err.csv_path = 3, 60, csv_path
         raise err
     monkeypatch.setattr(webfem.sweeps, "run", stop)
-    assert main(["sweep", "cases/base.toml", "--out", str(tmp_path), "--quiet"]) == 130
+    assert main(["sweep", "cases/base.toml", "--model", "closed-form", "--out", str(tmp_path),
+                 "--quiet"]) == 130
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert err == (f"webfem: interrupted: 3 of 60 points saved in "
                    f"{tmp_path / 'base_closed-form.csv'}; run the same command to continue")
@@ -243,3 +248,152 @@ def test_keys_describe_the_sweep_tables(capsys):
     assert "[sweep]" in out and "[[series]]" in out
     for key in ("parameter", "values", "start, stop", "num", "spacing", "label"):
         assert f"\n  {key} " in out
+
+
+# -- the engineer's interface (issue 13 items 1, 2, 3, 6) -------------------------------------
+
+def test_solve_defaults_to_auto_and_says_which_model_and_why(capsys):
+    assert main(["solve", "cases/base.toml"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("webfem auto: ")
+    used = first.removeprefix("webfem auto: ").split()[0]
+    assert used in ("closed-form", "fe1d", "fe2d") and f"{used} answered" in first
+    assert "estimated mu error" in first
+
+
+def test_units_of_the_printed_summary(capsys):
+    argv = ["solve", "base", "--model", "closed-form", "--set", "roller.speed=1200 m/min",
+            "--set", "web.tension=0.5 pli"]
+    assert main([*argv, "--units", "us"]) == 0
+    us = capsys.readouterr().out
+    assert "U_r = 3937 ft/min" in us and "T = 0.5 pli" in us and "R = 2.165 in" in us
+    assert " um" not in us and " m/s" not in us and "mil" in us
+    assert main([*argv, "--units", "metric"]) == 0
+    metric = capsys.readouterr().out
+    assert "U_r = 1200 m/min" in metric and "R = 55 mm" in metric
+    assert main([*argv, "--units", "us", "--json"]) == 0   # JSON stays SI
+    data = json.loads(capsys.readouterr().out)
+    assert data["units"] == "SI" and data["U"] == pytest.approx(20.0)
+
+
+def test_unit_errors_from_the_command_line(capsys):
+    assert main(["solve", "base", "--set", "web.tension=3 m"]) == 2
+    line = _one_line(capsys.readouterr().err)
+    assert "web.tension = '3 m' has dimension length; expected force/length" in line
+
+
+def test_traction_loss_speeds_take_units(capsys):
+    assert main(["traction-loss", "base", "--model", "closed-form", "--mu-min", "0.1",
+                 "--min-speed", "30 m/min", "--max-speed", "6000 m/min", "--units",
+                 "metric"]) == 0
+    out = capsys.readouterr().out
+    assert "m/min" in out and "m/s" not in out
+    assert main(["traction-loss", "base", "--mu-min", "0.1", "--max-speed", "3 kg"]) == 2
+
+
+def test_bundled_cases_list_init_and_run_from_anywhere(tmp_path, monkeypatch, capsys):
+    bundled = Path(webfem.__file__).parent / "cases"
+    names = sorted(p.stem for p in bundled.glob("*.toml"))
+    assert "base" in names and {c.stem for c in CASES} == set(names)
+    monkeypatch.chdir(tmp_path)
+    assert main(["cases"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [ln.split()[0] for ln in lines] == names
+    assert lines[0].split(None, 1)[1].startswith("Base case")
+    assert main(["init", "base"]) == 0
+    capsys.readouterr()
+    assert (tmp_path / "base.toml").read_text() == (bundled / "base.toml").read_text()
+    (tmp_path / "base.toml").write_text("# mine\n")
+    assert main(["init", "base"]) == 2   # never overwrites
+    assert "exists" in _one_line(capsys.readouterr().err)
+    assert (tmp_path / "base.toml").read_text() == "# mine\n"
+    assert main(["init", "fig10_wrap", "sub/dir"]) == 0
+    assert (tmp_path / "sub" / "dir" / "fig10_wrap.toml").exists()
+    assert main(["init", "bsae"]) == 2
+    assert "did you mean 'base'" in _one_line(capsys.readouterr().err)
+    (tmp_path / "base.toml").unlink()
+    assert main(["solve", "fig13_radius", "--model", "closed-form", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["model"] == "closed-form"
+
+
+def test_version_and_keys_show_units(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["--version"])
+    assert exit_.value.code == 0 and capsys.readouterr().out.strip() == \
+        f"webfem {webfem.__version__}"
+    assert main(["keys"]) == 0
+    out = capsys.readouterr().out
+    assert "[m/s] or e.g. '1200 m/min', '3900 ft/min'" in out
+    assert "[N/m] or e.g. '80 N/m', '0.45 pli'" in out
+    assert "\n  diameter " in out
+
+
+def test_no_progress_when_stderr_is_not_a_terminal(tmp_path, capsys):
+    assert main(["sweep", "base", "--model", "closed-form", "--out", str(tmp_path)]) == 0
+    err = capsys.readouterr().err
+    assert "points" not in err.replace("values x", "") and "\r" not in err
+
+
+def test_progress_on_a_terminal_shows_time_left(monkeypatch, capsys):
+    from webfem.cli.common import Progress
+
+    monkeypatch.setattr("sys.stderr.isatty", lambda: True)
+    progress = Progress()
+    progress(1, 4)
+    progress(4, 4)
+    err = capsys.readouterr().err
+    assert "1/4 points" in err and "left" in err and err.endswith("\n")
+    Progress(quiet=True)(1, 4)
+    assert capsys.readouterr().err == ""
+
+
+def test_wheel_installs_and_runs_from_an_empty_folder(tmp_path):
+    """Build the wheel, install it (without dependencies: the test venv's own are reached
+    through a .pth file) into a fresh venv, and run the bundled case from an empty folder."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+    import sysconfig
+
+    root = Path(__file__).parent.parent
+    src = tmp_path / "src"
+    src.mkdir()
+    shutil.copy(root / "pyproject.toml", src)
+    shutil.copy(root / "README.md", src)
+    shutil.copytree(root / "webfem", src / "webfem",
+                    ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    build = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet",
+                            "-w", str(tmp_path / "dist"), str(src)],
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr[-2000:]
+    assert "SetuptoolsDeprecationWarning" not in build.stderr
+    wheel, = (tmp_path / "dist").glob("webfem-*.whl")
+    venv = tmp_path / "venv"
+    subprocess.run([sys._base_executable, "-m", "venv", str(venv)], check=True)
+    py = venv / "bin" / "python"
+    purelib = subprocess.run([py, "-c", "import sysconfig; print(sysconfig.get_paths()"
+                                        "['purelib'])"], capture_output=True, text=True,
+                             check=True).stdout.strip()
+    Path(purelib, "project_deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    subprocess.run([py, "-m", "pip", "install", "--quiet", "--no-deps", "--no-index",
+                    str(wheel)], check=True, capture_output=True)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+
+    def webfem_(*argv):
+        return subprocess.run([venv / "bin" / "webfem", *argv], cwd=empty, env=env,
+                              capture_output=True, text=True)
+
+    listed = webfem_("cases")
+    assert listed.returncode == 0 and listed.stdout.startswith("base ")
+    assert webfem_("init", "base").returncode == 0 and (empty / "base.toml").exists()
+    (empty / "base.toml").unlink()   # the bundled name, not the copy, must answer
+    solved = webfem_("solve", "base", "--set", "roller.speed=1200 m/min", "--set",
+                     "web.tension=0.5 pli", "--units", "us")
+    assert solved.returncode == 0, solved.stderr
+    assert solved.stdout.startswith("webfem auto: ") and "U_r = 3937 ft/min" in solved.stdout
+    where = subprocess.run([py, "-c", "import webfem; print(webfem.__file__)"], cwd=empty,
+                           env=env, capture_output=True, text=True, check=True).stdout
+    assert str(venv) in where   # the wheel's copy, not the source tree

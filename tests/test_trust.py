@@ -108,3 +108,51 @@ def test_json_is_strict():
     assert "Infinity" not in text and "NaN" not in text
     assert all(v is None or not isinstance(v, float) or math.isfinite(v)
                for v in r.to_dict().values())
+
+
+def test_low_speed_sweeps_agree_on_every_path(tmp_path):
+    """Serial (continuation), resumed after losing its last rows, two processes and a Dask
+    LocalCluster give the same low-speed CSV rows to 1e-9: mu, the boundary share and the
+    regime of a landed web no longer depend on the path (0.153 / 0.128 / 0.125 before)."""
+    from webfem.sweeps import run
+    from webfem.sweepspec import Sweep
+
+    spec = Sweep("roller.speed", (0.5, 1.8, 3.0, 5.0), (("base", BASE),))
+    keys = ("mu", "share_boundary", "h_min", "delta_T")
+    serial = run(spec, "fe1d", tmp_path / "serial" / "s.csv")
+    # a resumed sweep: the same CSV with its last two rows lost
+    resumed_csv = tmp_path / "resumed" / "s.csv"
+    run(spec, "fe1d", resumed_csv)
+    lines = resumed_csv.read_text().splitlines(keepends=True)
+    resumed_csv.write_text("".join(lines[:-2]))
+    resumed = run(spec, "fe1d", resumed_csv)
+    pool = run(spec, "fe1d", tmp_path / "pool" / "s.csv", workers=2, chunk=2)
+    paths = {"resumed": resumed, "processes": pool}
+    try:
+        import distributed  # noqa: F401
+        paths["dask"] = run(spec, "fe1d", tmp_path / "dask" / "s.csv", workers=2,
+                            dask="local")
+    except ImportError:
+        pass
+    for name, rows in paths.items():
+        assert len(rows) == len(serial), name
+        for a, b in zip(rows, serial):
+            assert a["regime"] == b["regime"], (name, a["value"])
+            for key in keys:
+                assert float(a[key]) == pytest.approx(float(b[key]), rel=1e-9, abs=1e-12), \
+                    (name, a["value"], key)
+
+
+def test_a_point_without_answer_does_not_stop_a_sweep(tmp_path):
+    """roller.speed = 1e-7 m/s (a wrap 2e4 entry lengths long) in an fe1d sweep: that point
+    is kept as not converged with its message and the next point is solved."""
+    from webfem.sweeps import run
+    from webfem.sweepspec import Sweep
+
+    spec = Sweep("roller.speed", (1e-7, 40.0), (("base", BASE),))
+    rows = run(spec, "fe1d", tmp_path / "s.csv")
+    assert rows[0]["converged"] is False and "beyond the FE models' limit" in \
+        rows[0]["solver_message"]
+    assert rows[1]["converged"] is True and rows[1]["h_min"] > 0
+    with pytest.raises(webfem.errors.NoAdmissibleSolution):
+        webfem.solve(BASE.updated({"roller.speed": 1e-7}), model="fe1d")

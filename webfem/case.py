@@ -7,6 +7,9 @@ Figs. 10-13 at 20 m/s). The sections are defined in :mod:`webfem.sections`, swee
 (:class:`Sweep`, :func:`load_sweep`) in :mod:`webfem.sweepspec`; both are importable
 from here. Case files are read strictly: a file that is missing, a directory, not UTF-8
 or not TOML, an unknown key or a value out of range is an :class:`InputError` naming it.
+Numbers are in SI units; any numeric key also takes text with a unit (``speed = "1200
+m/min"``, ``tension = "0.5 pli"``, read by :mod:`webfem.units`), and ``roller.diameter``
+may stand for ``roller.radius``.
 
 Examples
 --------
@@ -31,8 +34,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping
 
 from .errors import CaseError, InputError  # CaseError: InputError's old name
-from .sections import (_KEYS, _SECTIONS, Air, Friction, Model, Roller, Web, Wrap, _flatten,
-                       _is_key, _show, _unknown, valid_keys)
+from .sections import (_KEYS, _SECTIONS, ALIASES, Air, Friction, Model, Roller, Web, Wrap,
+                       _flatten, _is_key, _show, _unknown, resolve_aliases, valid_keys)
 
 __all__ = [
     "Air",
@@ -114,9 +117,11 @@ class Case:
             raise
 
     def updated(self, values: Mapping[str, Any]) -> "Case":
-        """A copy with dotted keys replaced, e.g. ``{"roller.speed": 5.0}``."""
+        """A copy with dotted keys replaced, e.g. ``{"roller.speed": 5.0}``; values may be
+        text with units (``"1200 m/min"``) and ``roller.diameter`` may stand for
+        ``roller.radius``."""
         changed: dict[str, dict[str, Any]] = {}
-        for key, value in values.items():
+        for key, value in resolve_aliases(values).items():
             if not _is_key(key):
                 raise _unknown(key)
             section, name = key.split(".", 1)
@@ -311,15 +316,18 @@ def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> C
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
-    """Parse a CLI ``--set section.key=value`` (value in TOML syntax; bare words are strings).
+    """Parse a CLI ``--set section.key=value`` (value in TOML syntax; anything else, such as
+    a number with a unit, is kept as text for the case to read).
 
     >>> parse_assignment("roller.speed=12.5")
     ('roller.speed', 12.5)
+    >>> parse_assignment("roller.speed=1200 m/min")
+    ('roller.speed', '1200 m/min')
     """
     if "=" not in text:
         raise CaseError(f"--set {_show(text)}: expected section.key=value")
     key, raw = (s.strip() for s in text.split("=", 1))
-    if key not in _KEYS:
+    if key not in _KEYS and key not in ALIASES:
         raise _unknown(key, " (--set)")
     if "\n" in raw or "\r" in raw:  # TOML would read the next line as more keys
         raise CaseError(f"--set {key} = {_show(raw)}: the value must be on one line")

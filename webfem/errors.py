@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import difflib
 
-__all__ = ["InputError", "CaseError", "ConvergenceError", "ValidityWarning", "unknown_name"]
+__all__ = ["InputError", "CaseError", "NoAdmissibleSolution", "ConvergenceError",
+           "ValidityWarning", "unknown_name"]
 
 
 class InputError(ValueError):
@@ -22,6 +23,13 @@ class InputError(ValueError):
 
 #: The name this error had before options were typed; kept for scripts that catch it.
 CaseError = InputError
+
+
+class NoAdmissibleSolution(InputError):
+    """A valid operating point the models cannot answer: no admissible solution exists
+    (e.g. contact cannot carry T/R at any h >= 0) or it lies outside the physics' range
+    (a film thicker than R/100, a wrap too long to mesh). In a sweep the point is kept as
+    not converged, with this message, and the sweep goes on."""
 
 
 def unknown_name(kind: str, name: str, valid, where: str = "") -> InputError:

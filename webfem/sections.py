@@ -25,7 +25,8 @@ from typing import Any, Mapping
 
 from .errors import CaseError
 
-__all__ = ["Air", "Friction", "Model", "Roller", "Web", "Wrap", "valid_keys"]
+__all__ = ["ALIASES", "Air", "Friction", "Model", "Roller", "Web", "Wrap", "resolve_aliases",
+           "valid_keys"]
 
 _repr = reprlib.Repr()
 _repr.maxlist = _repr.maxtuple = _repr.maxdict = 6
@@ -68,6 +69,32 @@ def _range_text(meta: Mapping[str, Any]) -> str:
     return "must be " + " and ".join(parts) if parts else "must be finite"
 
 
+def _number(key: str, value: Any, meta: Mapping[str, Any]) -> float:
+    """``value`` of numeric ``key`` as a float in range: a number in the key's SI unit, or
+    text with a unit (``"1200 m/min"``, read by :mod:`webfem.units`)."""
+    if isinstance(value, str):
+        from .units import to_si   # pint only when text is given: numbers never pay for it
+        value = to_si(key, value, meta["unit"])
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise CaseError(f"{key} = {_show(value)} is not a number: expected a value "
+                        f"in {meta['unit']} ({_range_text(meta)}) or text with a unit")
+    try:
+        value = float(value)
+    except OverflowError:  # an integer beyond float range (TOML allows 10**400)
+        raise CaseError(f"{key} = {_show(value)} is out of range: "
+                        f"{_range_text(meta)} [{meta['unit']}]") from None
+    lo, hi = meta["lo"], meta["hi"]
+    bad = not math.isfinite(value)
+    if lo is not None:
+        bad |= value <= lo if meta["lo_open"] else value < lo
+    if hi is not None:
+        bad |= value >= hi if meta["hi_open"] else value > hi
+    if bad:
+        raise CaseError(f"{key} = {value!r} is out of range: {_range_text(meta)} "
+                        f"[{meta['unit']}]")
+    return value
+
+
 class _Section:
     """Shared validation for the frozen section dataclasses."""
 
@@ -85,24 +112,7 @@ class _Section:
                     raise CaseError(f"{key} = {_show(value)} is not valid: must be one of "
                                     + ", ".join(repr(c) for c in meta["choices"]))
                 continue
-            if isinstance(value, bool) or not isinstance(value, numbers.Real):
-                raise CaseError(f"{key} = {_show(value)} is not a number: expected a value "
-                                f"in {meta['unit']} ({_range_text(meta)})")
-            try:
-                value = float(value)
-            except OverflowError:  # an integer beyond float range (TOML allows 10**400)
-                raise CaseError(f"{key} = {_show(value)} is out of range: "
-                                f"{_range_text(meta)} [{meta['unit']}]") from None
-            object.__setattr__(self, f.name, value)
-            lo, hi = meta["lo"], meta["hi"]
-            bad = not math.isfinite(value)
-            if lo is not None:
-                bad |= value <= lo if meta["lo_open"] else value < lo
-            if hi is not None:
-                bad |= value >= hi if meta["hi_open"] else value > hi
-            if bad:
-                raise CaseError(f"{key} = {value!r} is out of range: {_range_text(meta)} "
-                                f"[{meta['unit']}]")
+            object.__setattr__(self, f.name, _number(key, value, meta))
 
 
 @dataclass(frozen=True)
@@ -226,6 +236,29 @@ _SECTIONS: dict[str, type[_Section]] = {
 }
 
 
+#: Keys read at the edge only, each stored as another: alias -> (stored key, factor, field
+#: metadata of the alias). A diameter is how the trade names a roller.
+ALIASES: dict[str, tuple[str, float, dict]] = {
+    "roller.diameter": ("roller.radius", 0.5, _num("m", 0.0, doc="roller diameter 2R, "
+                                                    "instead of roller.radius")),
+}
+
+
+def resolve_aliases(values: Mapping[str, Any]) -> Mapping[str, Any]:
+    """``values`` with each alias replaced by its stored key (``roller.diameter`` by
+    ``roller.radius`` = diameter / 2); an alias given together with its key is an error."""
+    if not any(k in ALIASES for k in values):
+        return values
+    out = dict(values)
+    for alias, (key, factor, meta) in ALIASES.items():
+        if alias in out:
+            if key in out:
+                raise CaseError(f"{key} = {_show(out[key])} and {alias} = "
+                                f"{_show(out[alias])}: give one of them, not both")
+            out[key] = factor * _number(alias, out.pop(alias), meta)
+    return out
+
+
 def valid_keys() -> list[str]:
     """All dotted case keys, e.g. ``'roller.speed'``."""
     return [f"{s}.{f.name}" for s, cls in _SECTIONS.items() for f in dataclasses.fields(cls)]
@@ -240,7 +273,8 @@ def _is_key(key: Any) -> bool:
 
 def _unknown(key: Any, where: str = "") -> CaseError:
     key = key if isinstance(key, str) else _show(key)
-    close = difflib.get_close_matches(key, valid_keys() + list(_SECTIONS), n=1, cutoff=0.5)
+    close = difflib.get_close_matches(key, valid_keys() + list(ALIASES) + list(_SECTIONS), n=1,
+                                      cutoff=0.5)
     hint = f"; did you mean '{close[0]}'?" if close else "; valid keys: " + ", ".join(valid_keys())
     return CaseError(f"unknown key '{key}'{where}{hint}")
 
@@ -259,7 +293,7 @@ def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
         for key, value in table.items():
             flat[f"{section}.{key}"] = value
     for key in flat:
-        if not _is_key(key):
+        if not _is_key(key) and key not in ALIASES:
             raise _unknown(key, where)
     return flat
 

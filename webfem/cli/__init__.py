@@ -1,5 +1,5 @@
 """Command line: ``webfem solve``, ``sweep``, ``mesh``, ``traction-loss``, ``calibrate``,
-``study``, ``keys``.
+``study``, ``keys``, ``cases``, ``init``.
 
 Run ``webfem --help`` or ``webfem COMMAND --help``. :mod:`.main` holds the parser and the
 exit codes, :mod:`.common` what the subcommands share (and their two-function protocol), and

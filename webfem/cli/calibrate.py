@@ -16,7 +16,7 @@ def add_parser(subparsers) -> None:
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
     p.add_argument("data", help="CSV (UTF-8): roller_speed, tension, wrap_deg (or any case "
                                 "key) and delta_T [N/m] or mu per row")
-    add_case_arguments(p, positional=False)
+    add_case_arguments(p, positional=False, default_model="closed-form")
     p.add_argument("--fit-sigma", action="store_true", help="also fit the web roughness sigma")
     p.add_argument("--json", action="store_true",
                    help="estimates, errors, residuals and notes as JSON")

@@ -13,17 +13,27 @@ def add_parser(subparsers) -> None:
 
 def _case_lines() -> list[str]:
     from ..case import _SECTIONS, Case
+    from ..sections import ALIASES
+    from ..units import examples
+
+    def line(name, key, default, meta):
+        if "choices" in meta:
+            extra = " one of " + ", ".join(meta["choices"])
+        else:
+            e1, e2 = examples(key, meta["unit"])
+            extra = f" [{meta['unit']}] or e.g. '{e1}', '{e2}'"
+        return f"  {name:<18} = {default!r:<12}{extra}  {meta.get('doc', '')}"
 
     default = Case()
     lines = []
     for name, cls in _SECTIONS.items():
         lines.append(f"[{name}]")
         for f in dataclasses.fields(cls):
-            meta = f.metadata
-            extra = (" one of " + ", ".join(meta["choices"]) if "choices" in meta
-                     else f" [{meta.get('unit', '')}]")
-            lines.append(f"  {f.name:<18} = {getattr(getattr(default, name), f.name)!r:<12}"
-                         f"{extra}  {meta.get('doc', '')}")
+            key = f"{name}.{f.name}"
+            lines.append(line(f.name, key, getattr(getattr(default, name), f.name), f.metadata))
+            for alias, (stored, _, meta) in ALIASES.items():
+                if stored == key:
+                    lines.append(line(alias.split(".", 1)[1], alias, None, meta))
     return lines
 
 
@@ -50,6 +60,12 @@ def _sweep_lines() -> list[str]:
     ]
 
 
+#: After the tables: how units are read.
+UNITS_NOTE = ("Numbers are in the SI unit shown in brackets; text with a unit is read too "
+              "(TOML: speed = \"1200 m/min\"; command line: --set 'roller.speed=1200 m/min'). "
+              "US: pli (lbf/in), ft/min or fpm, in, mil (0.001 in), psi.")
+
+
 def run(args) -> int:
-    print("\n".join(_case_lines() + _sweep_lines()))
+    print("\n".join(_case_lines() + _sweep_lines() + ["", UNITS_NOTE]))
     return 0

@@ -21,12 +21,21 @@ __all__ = ["main", "build_parser", "SUBCOMMANDS"]
 
 #: The subcommand modules of this package, in the order ``webfem --help`` lists them.
 SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", "effects",
-               "idler", "keys")
+               "idler", "keys", "cases")
 
 
 def _modules():
     for name in SUBCOMMANDS:
         yield importlib.import_module(f"{__package__}.{name}")
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("webfem")
+    except PackageNotFoundError:   # run from a source tree without an install
+        from .. import __version__
+        return __version__
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -35,7 +44,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="webfem",
         description="Air film and traction between a moving web and a roller "
-                    "(Hashimoto's model: closed form and finite elements).")
+                    "(Hashimoto's model: closed form and finite elements).",
+        epilog="Start with `webfem cases`, `webfem solve base` and `webfem keys`.")
+    parser.add_argument("--version", action="version", version=f"webfem {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for module in _modules():
         before = set(sub.choices)

@@ -19,7 +19,8 @@ def add_parser(subparsers) -> None:
                     "thin. The meshes follow fe2d's options entry, level, symmetry and "
                     "width_fine.",
         formatter_class=HELP_FORMATTER, epilog=options_epilog(["fe2d"]))
-    add_case_arguments(p)   # --model is accepted for old scripts; the meshes are fe2d's
+    # --model is accepted for old scripts; the meshes are fe2d's
+    add_case_arguments(p, default_model="fe2d")
     p.add_argument("--out", required=True, help="output folder")
 
 

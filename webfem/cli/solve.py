@@ -7,8 +7,10 @@ from pathlib import Path
 
 from ..api import solve
 from ..errors import ConvergenceError, InputError
-from .common import (HELP_FORMATTER, add_case_arguments, case_from, error_line, model_options,
-                     options_epilog, output_folder, print_json)
+from .common import (DEFAULT_MODEL, HELP_FORMATTER, Ticker, add_case_arguments,
+                     add_quiet_argument, add_units_argument, case_from, error_line,
+                     model_options, options_epilog, output_folder, print_json)
+from .summary import summary_text
 
 #: Models whose results never carry a 2-D film (``--plot`` is refused before solving).
 NO_FILM = ("closed-form", "fe1d")
@@ -17,7 +19,7 @@ NO_FILM = ("closed-form", "fe1d")
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser("solve", help="solve one operating point and print a summary",
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
-    add_case_arguments(p)
+    add_case_arguments(p, default_model=DEFAULT_MODEL)
     p.add_argument("--vtu", metavar="DIR",
                    help="write VTU files of the web (and film, fe2d) into DIR for ParaView")
     p.add_argument("--plot", action="store_true",
@@ -26,7 +28,9 @@ def add_parser(subparsers) -> None:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys: model, h_center, h_inlet, h_outlet, h_min, "
                         "mu, delta_T, regime, lambda, beta, eq21_valid, converged, iterations, "
-                        "n_dofs, solve_time_s, ...)")
+                        "n_dofs, solve_time_s, ..., and units: SI)")
+    add_units_argument(p)
+    add_quiet_argument(p)
 
 
 def _write_vtu(result, folder, stem) -> list[Path]:
@@ -45,7 +49,8 @@ def run(args) -> int:
                              "folder)") if args.plot else None
     stem = f"{Path(args.case).stem}_{args.model}"
     try:
-        result = solve(case, model=args.model, options=options)
+        with Ticker(f"solving with {args.model}", args.quiet):
+            result = solve(case, model=args.model, options=options)
     except ConvergenceError as err:
         error_line(err)
         if err.result is not None:
@@ -58,7 +63,7 @@ def run(args) -> int:
     if args.json:
         print_json(result.to_dict())
     else:
-        print(result.describe())
+        print(summary_text(result, args.model, args.units))
     for path in _write_vtu(result, vtu, stem) if vtu else []:
         print(f"wrote {path}", file=sys.stderr)
     if pictures:

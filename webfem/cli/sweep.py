@@ -7,8 +7,9 @@ import sys
 from pathlib import Path
 
 from ..case import load_sweep
-from .common import (HELP_FORMATTER, Progress, add_case_arguments, model_options,
-                     options_epilog, output_folder, overrides, positive_int)
+from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments,
+                     add_quiet_argument, model_options, options_epilog, output_folder,
+                     overrides, positive_int)
 
 
 def add_parser(subparsers) -> None:
@@ -16,9 +17,9 @@ def add_parser(subparsers) -> None:
                                             "each point is saved as it finishes and a re-run "
                                             "of the same sweep resumes where it stopped",
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
-    add_case_arguments(p)
+    add_case_arguments(p, default_model=DEFAULT_MODEL)
     p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv and .png")
-    p.add_argument("--quiet", action="store_true", help="no progress line")
+    add_quiet_argument(p)
     p.add_argument("--vtu", metavar="DIR",
                    help="also write VTU files per point and a .pvd collection per series")
     p.add_argument("--num", type=int,
@@ -49,11 +50,13 @@ def run(args) -> int:
     stem = f"{Path(args.case).stem}_{args.model}"
     where = ("Dask " + args.dask) if args.dask else (
         f"{args.workers} processes" if args.workers > 1 else "serial, with continuation")
-    print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
-          f"{len(spec.values)} values x {len(spec.series)} series ({where})", file=sys.stderr)
+    if not args.quiet:
+        print(f"webfem sweep: {args.case}, model {args.model}, {spec.parameter} over "
+              f"{len(spec.values)} values x {len(spec.series)} series ({where})",
+              file=sys.stderr)
     csv_path = out / f"{stem}.csv"
     rows = run_sweep(spec, args.model, csv_path, options=options, workers=args.workers,
-                     dask=args.dask, progress=None if args.quiet else Progress(),
+                     dask=args.dask, progress=Progress(args.quiet),
                      vtu=SweepVtu(vtu_dir, stem, spec.parameter) if vtu_dir else None)
     reference = None
     if args.model != "closed-form":   # the paper's model beside the field solution

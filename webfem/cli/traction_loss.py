@@ -10,29 +10,34 @@ import numpy as np
 
 from ..traction import (CHART_PARAMETERS, CHART_POINTS, SPEED_RANGE, mu_curve,
                         traction_loss_speed, traction_loss_table)
-from .common import (HELP_FORMATTER, Progress, add_case_arguments, case_from, model_options,
-                     options_epilog, output_folder, positive_int, print_json)
+from ..units import display
+from .summary import in_units
+from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, Ticker, add_case_arguments,
+                     add_quiet_argument, add_units_argument, case_from, model_options,
+                     options_epilog, output_folder, positive_int, print_json, speed_value)
 
 
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser("traction-loss",
                               help="roller speed at which mu falls below a threshold",
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
-    add_case_arguments(p)
+    add_case_arguments(p, default_model=DEFAULT_MODEL)
     p.add_argument("--mu-min", type=float, required=True, help="friction threshold, e.g. 0.1")
-    p.add_argument("--min-speed", type=float, default=SPEED_RANGE[0],
-                   help=f"scan from (m/s, default {SPEED_RANGE[0]:g})")
-    p.add_argument("--max-speed", type=float, default=SPEED_RANGE[1],
-                   help=f"scan to (m/s, default {SPEED_RANGE[1]:g})")
+    p.add_argument("--min-speed", type=speed_value, default=SPEED_RANGE[0],
+                   help=f"scan from (m/s or with a unit, e.g. '30 m/min'; default "
+                        f"{SPEED_RANGE[0]:g} m/s)")
+    p.add_argument("--max-speed", type=speed_value, default=SPEED_RANGE[1],
+                   help=f"scan to (m/s or with a unit; default {SPEED_RANGE[1]:g} m/s)")
     p.add_argument("--json", action="store_true",
                    help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
-                        "speed_peak, bracket, evaluations, message")
+                        "speed_peak, bracket, evaluations, message; units: SI)")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR")
     p.add_argument("--points", type=positive_int, default=CHART_POINTS,
                    help=f"points per parameter in the chart (default {CHART_POINTS})")
-    p.add_argument("--quiet", action="store_true", help="no progress line")
+    add_units_argument(p)
+    add_quiet_argument(p)
 
 
 def run(args) -> int:
@@ -40,19 +45,22 @@ def run(args) -> int:
     options = model_options(args)
     chart_dir = output_folder(args.chart, "--chart") if args.chart else None
     speed_range = (args.min_speed, args.max_speed)
-    out = traction_loss_speed(case, args.mu_min, model=args.model, speed_range=speed_range,
-                              options=options)
+    with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
+        out = traction_loss_speed(case, args.mu_min, model=args.model,
+                                  speed_range=speed_range, options=options)
     if args.json:
         print_json(out.to_dict())
     else:
-        print(f"webfem traction-loss ({out.model}): {out.message}; peak mu "
-              f"{out.mu_peak:.4f} at {out.speed_peak:.3g} m/s; {out.evaluations} solves")
+        message = out.message if args.units == "si" else in_units(out.message, args.units)
+        print(f"webfem traction-loss ({out.model}): {message}; peak mu "
+              f"{out.mu_peak:.4f} at {display(out.speed_peak, 'speed', args.units, 3)}; "
+              f"{out.evaluations} solves")
     if chart_dir:
         from ..io.charts import traction_loss_chart
 
         models = list(dict.fromkeys(["closed-form", args.model]))
         rows = traction_loss_table(case, out.mu_min, models, n=args.points, options=options,
-                                   progress=None if args.quiet else Progress())
+                                   progress=Progress(args.quiet))
         speeds = np.geomspace(max(args.min_speed, 1e-3), args.max_speed, 40)
         curves = {m: mu_curve(case, m, speeds, options if m == args.model else None)
                   for m in models}

@@ -9,10 +9,12 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 
 from ..files import replacing
 
-__all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart"]
+__all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart", "needs_markers",
+           "PARAMETER_LABELS"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
@@ -27,21 +29,69 @@ def _f(row: dict, key: str) -> float:
         return np.nan
 
 
+#: Axis labels of the parameters a sweep usually runs over (SI units).
+PARAMETER_LABELS = {"roller.speed": "roller speed U_r [m/s]", "web.speed": "web speed U_w [m/s]",
+                    "web.tension": "web tension T [N/m]", "wrap.angle_deg": "wrap angle B [deg]",
+                    "web.width": "web width L [m]", "roller.radius": "roller radius R [m]",
+                    "web.roughness": "web roughness sigma_w [m]",
+                    "roller.roughness": "roller roughness sigma_r [m]"}
+
+
+def needs_markers(values) -> bool:
+    """Markers on a sweep of fewer than 30 points or log-spaced values: a smooth line would
+    suggest points that were never solved."""
+    v = np.unique(np.asarray([x for x in values if np.isfinite(x)], float))
+    if v.size < 30:
+        return True
+    steps = np.diff(v)
+    return bool(v.min() > 0 and not np.allclose(steps, steps.mean(), rtol=0.05)
+                and np.allclose(np.diff(np.log(v)), np.log(v[-1] / v[0]) / (v.size - 1),
+                                rtol=0.05))
+
+
+def _level_labels(ax, levels: dict) -> None:
+    """Draw the regime levels on the gap axis ``ax``: ``levels`` maps a gap [um] to
+    ``(name, series labels)``. Each distinct value gets one label at the axis' right end,
+    naming the series when not all share it; labels closer than a text line are pushed
+    apart (with a thin leader) so none prints on top of another."""
+    everyone = set().union(*(who for _, who in levels.values())) if levels else set()
+    fig = ax.figure
+    fig.canvas.draw()   # the axis limits and pixel scale are final only after a draw
+    to_px = ax.transData.transform
+    step = 9.0 * fig.dpi / 72.0   # one 7-point line with a little air, in pixels
+    placed = []
+    for level, (name, who) in sorted(levels.items()):
+        ax.axhline(level, color="0.55", lw=0.8, ls="-", zorder=0)
+        y = to_px((0.0, level))[1]
+        at = max(y, placed[-1][2] + step) if placed else y
+        whose = "" if who == everyone else f" ({', '.join(sorted(who))})"
+        placed.append((level, f"{name} = {level:.2f} um{whose}", at, y))
+    for level, text, at, y in placed:
+        ax.annotate(text, (1.0, level), xycoords=("axes fraction", "data"),
+                    xytext=(-3, 1.5 + (at - y) * 72.0 / fig.dpi), textcoords="offset points",
+                    ha="right", va="bottom", fontsize=7, color="0.25",
+                    bbox=dict(fc="white", ec="none", alpha=0.8, pad=0.3),
+                    arrowprops=dict(arrowstyle="-", color="0.6", lw=0.5) if at > y else None)
+
+
 def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
                 reference: list[dict] | None = None) -> Path:
-    """mu against roller speed per series, with the gaps (dashed) on a second axis.
+    """mu against the swept parameter per series, with the gaps (dashed) on a second axis.
 
-    ``reference``: rows of another model (the closed form beside an FE sweep), drawn as thin
-    solid lines in the series' colours, mu only. Points that did not converge are marked x
-    on the axis and left out of the lines.
+    ``reference``: rows of another model (the closed form beside an FE sweep), drawn thin in
+    the series' colours: mu solid, its gaps dashed like the main ones. Points that did not
+    converge are marked x on the axis and left out of the lines. Sweeps of fewer than 30
+    points or log-spaced ones get markers (:func:`needs_markers`).
 
-    The regime boundaries h = h_c and h = 3 sigma are drawn as grey horizontal lines on the
-    gap axis (one per distinct value among the series).
+    The regime boundaries h = h_c and h = 3 sigma are grey lines on the gap axis, labelled
+    there, one label per distinct value (close values share one). The legend sits outside
+    the axes, on the right.
     """
     series = list(dict.fromkeys(r["series"] for r in rows))
-    fig, ax = plt.subplots(figsize=(7.5, 5.0), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(9.0, 5.0), layout="constrained")
     ax2 = ax.twinx()
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    marker = "o" if needs_markers([_f(r, "value") for r in rows]) else None
     levels = {}
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
@@ -51,41 +101,48 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         colour = colours[i % len(colours)]
         model = sel[0]["model"]
         ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
-                lw=1.8, label=f"{label} ({model})" if len(series) > 1 or reference
+                lw=1.8, marker=marker, ms=3.5,
+                label=f"{label}: mu ({model})" if len(series) > 1 or reference
                 else f"mu ({model})")
         bad = [r for r, k in zip(sel, ok) if not k]
         if bad:
             ax.plot([r["value"] for r in bad], [0.0] * len(bad), "x", color=colour,
-                    label="not converged")
+                    label="not converged", clip_on=False)
         for key, name, dash in _GAP_STYLES:
             ax2.plot(U, [_f(r, key) * 1e6 if k else np.nan for r, k in zip(sel, ok)],
-                     linestyle=dash, color=colour, lw=1.0,
-                     label=f"h {name}" if i == 0 else None)
-        if reference:
-            ref = [r for r in reference if r["series"] == label]
-            ax.plot([r["value"] for r in ref], [_f(r, "mu") for r in ref], "-", color=colour,
-                    lw=0.9, alpha=0.6,
-                    label=f"{label} ({ref[0]['model']})" if ref else None)
-        for key, factor, name in (("h_c", 1.0, "h = h_c"), ("sigma", 3.0, "h = 3 sigma")):
-            known = [_f(r, key) for r in good if np.isfinite(_f(r, key))]
-            if known:
-                levels.setdefault(round(factor * known[0] * 1e6, 3), name)
-    for level, name in levels.items():
-        ax2.axhline(level, color="0.55", lw=0.8, ls="-", zorder=0)
-        ax2.annotate(f"{name} = {level:.2f} um", (0.01, level),
-                     xycoords=("axes fraction", "data"), fontsize=7, color="0.35",
-                     va="bottom")
-    ax.set_xlabel("roller speed U_r [m/s]" if rows[0]["parameter"] == "roller.speed"
-                  else rows[0]["parameter"])
-    ax.set_ylabel("friction coefficient mu [-]")
-    ax2.set_ylabel("web spacing h [um] (dashed)")
+                     linestyle=dash, color=colour, lw=1.1, marker=marker, ms=2.0,
+                     )
+        ref = [r for r in reference or [] if r["series"] == label]
+        if ref:
+            rmodel = ref[0]["model"]
+            rU = [r["value"] for r in ref]
+            ax.plot(rU, [_f(r, "mu") for r in ref], "-", color=colour, lw=0.8, alpha=0.7,
+                    label=f"{label}: mu ({rmodel})")
+            for key, name, dash in _GAP_STYLES:
+                ax2.plot(rU, [_f(r, key) * 1e6 for r in ref], linestyle=dash, color=colour,
+                         lw=0.6, alpha=0.7)
+        for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
+            for r in good:
+                if np.isfinite(_f(r, key)):
+                    value = round(factor * _f(r, key) * 1e6, 2)
+                    levels.setdefault(value, (name, set()))[1].add(str(label))
+    parameter = rows[0]["parameter"]
+    ax.set_xlabel(PARAMETER_LABELS.get(parameter, parameter))
+    ax.set_ylabel("friction coefficient mu [-] (solid)")
+    ax2.set_ylabel("web spacing h [um] (dashed; grey: regime levels)")
     mu = [_f(r, "mu") for r in rows if r.get("converged") is True]
     ax.set_ylim(0.0, max([0.4] + [1.1 * m for m in mu if np.isfinite(m)]))
     ax2.set_ylim(0.0, None)
     ax.grid(True, alpha=0.3)
     h1, l1 = ax.get_legend_handles_labels()
-    h2, l2 = ax2.get_legend_handles_labels()
-    ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper right", ncol=2 if reference else 1)
+    # the gap styles once, in black: the colours already name the series
+    models = [rows[0]["model"]] + ([reference[0]["model"]] if reference else [])
+    styles = [(Line2D([], [], color="k", lw=1.1 if m == models[0] else 0.6, linestyle=dash),
+               f"gap h {name} ({m}{'' if m == models[0] else ', thin'})")
+              for m in models for _, name, dash in _GAP_STYLES]
+    fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
+               loc="outside right upper")
+    _level_labels(ax2, levels)
     if title:
         ax.set_title(title, fontsize=10)
     return _save(fig, path)
@@ -112,7 +169,7 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
     ax.set_xlabel("roller speed U_r [m/s]")
     ax.set_ylabel("mu [-]")
     ax.set_title("base case", fontsize=9)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="best")
     for ax, (key, label, *_) in zip(axes[1:], parameters):
         for model in dict.fromkeys(r["model"] for r in rows):
             sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
@@ -121,6 +178,10 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
                     label=model, ms=3)
         ax.set_xlabel(label)
         ax.set_ylabel("traction-loss speed [m/s]")
+        if key == "web.width" and any(r["model"] == "fe1d" for r in rows):
+            ax.annotate("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
+                        "the width never enters it", (0.03, 0.97), xycoords="axes fraction",
+                        ha="left", va="top", fontsize=6.5, color="0.3")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(f"Roller speed at which mu falls below {mu_min:g}", fontsize=10)

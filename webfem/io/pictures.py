@@ -32,6 +32,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import CenteredNorm  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter, NullFormatter  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 from .charts import _save  # noqa: E402
@@ -76,10 +77,11 @@ def _edges(ax, half, label=False):
 
 
 def _level(ax, value, text, colour):
-    """A horizontal level with its label on the right, just above the line."""
+    """A horizontal level with its label at the left (over the wide inlet gap), just above
+    the line."""
     ax.axhline(value, color=colour, lw=0.9, zorder=1)
-    ax.annotate(text, (1.0, value), xycoords=("axes fraction", "data"), xytext=(-3, 2),
-                textcoords="offset points", ha="right", va="bottom", fontsize=7, color=colour)
+    ax.annotate(text, (0.0, value), xycoords=("axes fraction", "data"), xytext=(3, 1),
+                textcoords="offset points", ha="left", va="bottom", fontsize=7, color=colour)
 
 
 def _centre_line(result):
@@ -131,34 +133,55 @@ def film_figure(result, path, title: str | None = None) -> Path:
         ax = axes[0]
         pts, tri, p = _full_width(result.film)
         keep = np.abs(pts[:, 0]) <= reach * 1.02
-        scale = np.max(np.abs(p[keep])) if keep.any() else 1.0
-        mesh = ax.tripcolor(Triangulation(pts[:, 0] * _MM, pts[:, 1] * _MM, tri), p,
-                            shading="gouraud", cmap="RdBu_r",
-                            norm=CenteredNorm(0.0, halfrange=scale or 1.0), rasterized=True)
-        bar = fig.colorbar(mesh, cax=fig.add_subplot(grid[0, 1]))
+        # the suction peak past the outlet edge is several times the wrap pressure T/R:
+        # cap the colours at 1.5 T/R so the film in the wrap keeps its shades
+        scale = 1.5 * (s.T_eff or case.web.tension) / case.roller.radius
+        capped = np.abs(p).max() > scale
+        mesh = ax.tripcolor(Triangulation(pts[:, 0] * _MM, pts[:, 1] * _MM, tri),
+                            np.clip(p, -scale, scale), shading="gouraud", cmap="RdBu_r",
+                            norm=CenteredNorm(0.0, halfrange=scale), rasterized=True)
+        bar = fig.colorbar(mesh, cax=fig.add_subplot(grid[0, 1]),
+                           extend="both" if capped else "neither")
         bar.set_label("p - p_a [Pa]", fontsize=8)
         bar.ax.tick_params(labelsize=7)
+        peaks = (f"; colours capped at 1.5 T/R, peaks {p.min():.0f} and {p.max():.0f} Pa"
+                 if capped else "")
         ax.set_ylabel("z across width [mm]")
-        ax.set_title("a. film pressure above ambient, full width", fontsize=9, loc="left",
-                     pad=12)
+        ax.set_title(f"a. film pressure above ambient, full width{peaks}", fontsize=9,
+                     loc="left", pad=12)
         _edges(ax, half, label=True)
 
     ax = axes[-2]
     x, h = _centre_line(result)
     inside = np.abs(x) <= reach * 1.02
     ax.plot(x[inside] * _MM, h[inside] * _UM, color="k", lw=1.4, label="gap h")
-    levels = [(s.h_c * _UM, f"h_c = {s.h_c * _UM:.2f} um (mixed below)", "tab:orange"),
+    levels = [(s.h_c * _UM, f"h_c = {s.h_c * _UM:.2f} um (boundary below)", "tab:orange"),
               (3 * s.sigma * _UM, f"3 sigma = {3 * s.sigma * _UM:.2f} um (fluid above)",
                "tab:blue")]
     for value, text, colour in levels:
         if math.isfinite(value):
             _level(ax, value, text, colour)
-    top = max([3 * s.sigma * _UM, s.h_c * _UM] + [v * _UM for v in (s.h_inlet, s.h_outlet)
-                                                   if math.isfinite(v)])
-    ax.set_ylim(0.0, 1.8 * top)   # the landing zone, not the far entry lengths
+    # a log axis: the landing zone (a few um) and the entry gaps (tens of um) both show
+    shown = h[inside][h[inside] > 0] * _UM
+    low = max(min([s.h_c * _UM, 3 * s.sigma * _UM] + ([shown.min()] if shown.size else [])),
+              0.1 * s.h_c * _UM)
+    landed = inside & (h * _UM < 0.5 * low)
+    if landed.any():   # the closed form lands the web (h = 0), which a log axis cannot show
+        ax.fill_between(x * _MM, 0.5 * low, 4.0 * low, where=landed, color="0.6", lw=0,
+                        label=f"web landed (h below {0.5 * low:.2g} um)")
+        ax.legend(loc="upper right", fontsize=7, frameon=False)
+    high = max([3 * s.sigma * _UM] + [v * _UM for v in (s.h_inlet, s.h_outlet)
+                                      if math.isfinite(v)])
+    ax.set_yscale("log")
+    ax.set_ylim(0.5 * low, 4.0 * high)
+    ax.set_yticks([t for t in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
+                   if 0.5 * low <= t <= 4.0 * high])
+    ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_ylabel("gap h [um]")
-    ax.set_title(f"{'b' if two_d else 'a'}. gap along the centre line (above the plot: "
-                 "clipped far entry)", fontsize=9, loc="left")
+    ax.set_title(f"{'b' if two_d else 'a'}. gap along the centre line (log scale; the far "
+                 "entry gaps run off the top)", fontsize=9, loc="left",
+                 pad=3 if two_d else 12)
     _edges(ax, half, label=not two_d)
 
     ax = axes[-1]
@@ -171,8 +194,8 @@ def film_figure(result, path, title: str | None = None) -> Path:
         ax.plot(x[wrap] * _MM, np.asarray(f["mu"], float)[wrap], color="k", lw=1.3,
                 label="local mu(x)")
     ax.axhline(s.mu, color="tab:red", lw=0.9, ls=(0, (5, 2)))
-    ax.annotate(f"wrap average mu = {s.mu:.3f}", (0.0, s.mu), xytext=(0, 2),
-                textcoords="offset points", ha="center", va="bottom", fontsize=7,
+    ax.annotate(f"wrap average mu = {s.mu:.3f}", (-half * _MM, s.mu), xytext=(4, 2),
+                textcoords="offset points", ha="left", va="bottom", fontsize=7,
                 color="tab:red")
     ax.set_ylim(0.0, None)
     ax.set_ylabel("friction mu [-]")

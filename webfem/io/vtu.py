@@ -1,5 +1,10 @@
 """VTU files for ParaView (meshio): the web as a polyline, the film as quadrilaterals.
 
+Arrays are named with their units (``"h [m]"``, ``"p-p_a [Pa]"``, :data:`ARRAY_NAMES`);
+``regime`` (0 boundary, 1 mixed, 2 fluid) and ``in_wrap`` (1 on the roller) are integers;
+the field data name the regime codes, the coordinates and the headline numbers with units.
+A half-width film is mirrored, so the file shows the full width.
+
 Files appear whole or not at all (hidden temporary file, renamed) with the user's umask.
 A sweep's files (:class:`SweepVtu`) are named by series and point index, carry their series
 label and swept value as field data, and are tied together per series by ``.pvd``
@@ -20,13 +25,28 @@ import numpy as np
 from ..errors import InputError
 from ..files import remove_stale_temps, replacing, write_text
 
-__all__ = ["WEB_FIELDS", "FILM_FIELDS", "web_mesh", "film_mesh", "write_result", "write_pvd",
+__all__ = ["ARRAY_NAMES", "WEB_FIELDS", "FILM_FIELDS", "MEANING", "web_mesh", "film_mesh", "write_result", "write_pvd",
            "SweepVtu"]
 
-#: Point data of the web polyline.
-WEB_FIELDS = ("w", "h", "p_rel", "p", "p_contact", "chi_c", "mu", "regime", "in_wrap")
-#: Point data of the film surface (2-D models).
-FILM_FIELDS = ("p", "p_rel", "h", "p_contact", "chi_c", "mu", "regime")
+#: Result field -> VTU array name: the unit in brackets, so ParaView's colour bars carry it.
+ARRAY_NAMES = {"w": "w [m]", "h": "h [m]", "p_rel": "p-p_a [Pa]", "p": "p [Pa]",
+               "p_contact": "p_contact [Pa]", "chi_c": "chi_c [-]", "mu": "mu [-]",
+               "mu_c": "mu_c [-]", "mu_f": "mu_f [-]", "regime": "regime", "in_wrap": "in_wrap"}
+#: Point data of the web polyline (array names).
+WEB_FIELDS = tuple(ARRAY_NAMES[k] for k in ("w", "h", "p_rel", "p", "p_contact", "chi_c", "mu",
+                                            "regime", "in_wrap"))
+#: Point data of the film surface (2-D models; array names).
+FILM_FIELDS = tuple(ARRAY_NAMES[k] for k in ("p", "p_rel", "h", "p_contact", "chi_c", "mu",
+                                             "regime", "in_wrap"))
+#: Integer arrays: the regime codes and the in-wrap flag.
+_INTEGER = ("regime", "in_wrap")
+#: Field data every result file carries: the regime codes' names and the coordinates'
+#: meaning (names are text, values numbers: meshio cannot read VTK string arrays).
+MEANING = {"regime 0 = boundary (h < h_c)": 0.0, "regime 1 = mixed (h_c <= h <= 3 sigma)": 1.0,
+           "regime 2 = fluid (h > 3 sigma)": 2.0,
+           "X = arc from the wrap centre [m], air dragged to +X": 0.0,
+           "Y = across the width from the centre line [m] (film)": 0.0,
+           "in_wrap = 1 on the roller (|X| <= R B / 2), 0 in the free spans": 0.0}
 
 
 def _field_data(values: dict) -> bytes:
@@ -59,50 +79,90 @@ def read_field_data(path: str | Path) -> dict:
             for array in ElementTree.fromstring(block.group(0) if block else "<FieldData/>")}
 
 
+def _arrays(values: dict, keys) -> dict:
+    return {ARRAY_NAMES[k]: np.asarray(values[k], np.int32 if k in _INTEGER else float)
+            for k in keys if k in values}
+
+
 def web_mesh(result) -> meshio.Mesh:
-    """The web as a polyline along x [m] with its fields (width-averaged film pressure)."""
+    """The web as a polyline along x [m] with its fields (width-averaged film pressure),
+    arrays named with their units (:data:`ARRAY_NAMES`)."""
     f = result.fields
     x = np.asarray(f["x"], float)
     pts = np.column_stack([x, np.zeros_like(x), np.zeros_like(x)])
     cells = [("line", np.column_stack([np.arange(x.size - 1), np.arange(1, x.size)]))]
-    data = {k: np.asarray(f[k], float) for k in WEB_FIELDS if k in f}
+    data = _arrays(f, ARRAY_NAMES)
+    if "in_wrap" not in data:   # the closed form solves the wrap only
+        data["in_wrap"] = np.ones(x.size, np.int32)
     return meshio.Mesh(pts, cells, point_data=data)
 
 
-def film_mesh(result) -> meshio.Mesh:
-    """The film surface (x, z) [m] with its vertex fields."""
+def film_mesh(result, full: bool = True) -> meshio.Mesh:
+    """The film surface (x, y = z) [m] with its vertex fields and the in-wrap flag; with
+    ``full`` a half-width solve is mirrored about the centre line, so the file shows the
+    whole web."""
     film = result.film
-    data = {k: np.asarray(film[k], float) for k in FILM_FIELDS if k in film}
-    return meshio.Mesh(film["points"], [("quad", film["quads"])], point_data=data)
+    pts = np.asarray(film["points"], float)
+    quads = np.asarray(film["quads"], int)
+    values = {k: np.asarray(film[k]) for k in ARRAY_NAMES if k in film}
+    half = result.case.roller.radius * result.case.B / 2
+    values["in_wrap"] = (np.abs(pts[:, 0]) <= half * (1 + 1e-12)).astype(np.int32)
+    if full and pts[:, 1].min() >= 0.0 and pts[:, 1].max() > 0.0:
+        off = np.flatnonzero(pts[:, 1] > 0.0)   # the centre line's vertices stay shared
+        image = np.arange(len(pts))
+        image[off] = len(pts) + np.arange(off.size)
+        pts = np.vstack([pts, pts[off] * [1.0, -1.0, 1.0]])
+        quads = np.vstack([quads, image[quads][:, ::-1]])   # reversed: still counter-clockwise
+        values = {k: np.concatenate([v, v[off]]) for k, v in values.items()}
+    return meshio.Mesh(pts, [("quad", quads)], point_data=_arrays(values, ARRAY_NAMES))
+
+
+def _summary_data(result) -> dict:
+    """The headline numbers, named with their units, for every file of a result."""
+    s, c = result.summary, result.case
+    data = {"roller.speed [m/s]": c.roller.speed, "web.tension [N/m]": c.web.tension,
+            "wrap.angle_deg [deg]": c.wrap.angle_deg, "web.width [m]": c.web.width,
+            "roller.radius [m]": c.roller.radius, "mu (wrap average) [-]": s.mu,
+            "h_min [m]": s.h_min, "h_c [m]": s.h_c, "3 sigma [m]": 3 * s.sigma,
+            "converged": float(bool(s.converged))}
+    return {k: v for k, v in data.items() if v is not None and np.isfinite(v)}
 
 
 def write_result(result, folder, stem: str | None = None, field_data: dict | None = None
                  ) -> list[Path]:
     """Write ``STEM_web.vtu`` (and ``STEM_film.vtu`` for 2-D models); returns the paths.
 
-    An unconverged result is written with ``_NOT_CONVERGED`` in the names, for inspection.
-    ``field_data`` (name -> number or text) is stored in every file. The film is written
-    before the web, so a web file implies its film file is complete.
+    Arrays carry their units in their names (``"h [m]"``, ``"p-p_a [Pa]"``); ``regime`` is
+    an integer whose names, with the coordinates' meaning and the headline numbers, are in
+    the field data (:data:`MEANING`); the film covers the full width. An unconverged result
+    is written with ``_NOT_CONVERGED`` in the names, for inspection. ``field_data`` (name ->
+    number) is added to every file. The film is written before the web, so a web file
+    implies its film file is complete.
     """
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     stem = stem or result["model"]
     if not result["converged"]:
         stem += "_NOT_CONVERGED"
+    data = MEANING | _summary_data(result) | dict(field_data or {})
     paths = []
     if result.film is not None:
-        paths.append(_write_mesh(film_mesh(result), folder / f"{stem}_film.vtu", field_data))
-    paths.insert(0, _write_mesh(web_mesh(result), folder / f"{stem}_web.vtu", field_data))
+        paths.append(_write_mesh(film_mesh(result), folder / f"{stem}_film.vtu", data))
+    paths.insert(0, _write_mesh(web_mesh(result), folder / f"{stem}_web.vtu", data))
     return paths
 
 
-def write_pvd(entries, path, comment: str = "") -> Path:
+def write_pvd(entries, path, comment: str = "", parameter: str = "") -> Path:
     """A ParaView collection: ``entries`` are ``(value, file)`` or ``(value, file, name)``
     (files relative to the .pvd's folder or absolute); the swept value becomes the
-    collection's time."""
+    collection's time, and ``parameter`` (its name) is stated in the file's first comment
+    and as an attribute of the collection, which ParaView ignores but a reader can see."""
     path = Path(path)
-    lines = ['<?xml version="1.0"?>',
-             '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">']
+    lines = ['<?xml version="1.0"?>']
+    if parameter:
+        lines.append(f"<!-- time (timestep) = {escape(parameter).replace('--', '- -')} -->")
+    lines.append('<VTKFile type="Collection" version="0.1" byte_order="LittleEndian"'
+                 + (f" parameter={quoteattr(parameter)}" if parameter else "") + ">")
     if comment:
         lines.append(f"  <!-- {escape(comment).replace('--', '- -')} -->")
     lines.append("  <Collection>")
@@ -211,6 +271,7 @@ class SweepVtu:
                 name = f"{self.stem}_s{series + 1:02d}{'_' + tag if tag else ''}_{part}.pvd"
                 self._closed.append(write_pvd(
                     entries, self.folder / name,
-                    comment=f"webfem sweep {self.stem}: series {series + 1} ({label}), "
-                            f"time = {self.parameter}"))
+                    comment=f"webfem sweep {self.stem}: series {series + 1} ({label}); "
+                            f"timestep = swept parameter {self.parameter}",
+                    parameter=self.parameter))
         return list(self._closed)

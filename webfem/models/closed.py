@@ -24,7 +24,7 @@ from ..physics.contact import REGIMES, contact_gap, contact_pressure
 from ..physics.effects import CLOSED_FORM_CARRIES, idler_check, included, left_out
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
                                 wrap_average_linear_gap, wrap_average_loads)
-from ..errors import InputError
+from ..errors import NoAdmissibleSolution
 from ..physics.validity import contact_overload, slip_warning, thin_film_check
 from ..result import Diagnostics, Fields, Result, Summary
 from .options import ClosedFormOptions
@@ -159,7 +159,8 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
     if not summary.converged:
-        raise InputError(f"no admissible closed-form answer: {summary.solver_message}")
+        raise NoAdmissibleSolution(f"no admissible closed-form answer: "
+                                   f"{summary.solver_message}")
     R, B = case.roller.radius, case.B
     x = np.linspace(-R * B / 2, R * B / 2, options.n_points)
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 from ..case import Case
-from ..errors import ConvergenceError, InputError
+from ..errors import ConvergenceError, InputError, NoAdmissibleSolution
 from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.closed_form import eq21_valid
@@ -226,7 +226,8 @@ def _no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=N
     load there exceeds what contact carries at h = 0."""
     overload = contact_overload(case) if prm.contact else None
     if overload:
-        raise InputError(f"no admissible solution: the web lands ({why}) and {overload}")
+        raise NoAdmissibleSolution(f"no admissible solution: the web lands ({why}) and "
+                                   f"{overload}")
     if problem is None or not prm.contact:
         return
     Hmin, Xmin = minimum(problem, u, prm)
@@ -240,7 +241,7 @@ def _no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=N
              "pulls it" if suction < -case.p_bar else "the web is pressed")
     bend = (f" with bending stiffness D = {case.bending_used:.3g} N m"
             if case.bending_used > 0 else "")
-    raise InputError(
+    raise NoAdmissibleSolution(
         f"no admissible solution: {cause} through its asperities at x = "
         f"{Xmin * case.x_scale:.4g} m{bend}: the contact pressure needed exceeds what the "
         f"{case.friction.distribution} contact law carries at h = 0 ({p0:.4g} Pa, E_b sigma/"
@@ -282,8 +283,9 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     foundation of stiffness k_c). No refinement past ``max_cells`` cells.
     """
     X = problem.X
+    H_true = problem.gap(u, prm, X)
     # films thinner than the roughness carry nothing the asperities do not: resolve to S
-    H = np.maximum(problem.gap(u, prm, X), max(prm.floor, prm.S if prm.contact else 0.0))
+    H = np.maximum(H_true, max(prm.floor, prm.S if prm.contact else 0.0))
     Hc = np.minimum(H[1:], H[:-1])
     scale = np.full(Hc.shape, np.inf)
     if prm.K > 0:
@@ -293,7 +295,11 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
         with np.errstate(all="ignore"):
             scale = np.minimum(scale, 1.0 / np.sqrt(kc))
             if prm.Dn > 0:
-                scale = np.minimum(scale, (prm.Dn / kc) ** 0.25)
+                # where the web is pressed into its asperities the foundation is as stiff
+                # as the contact law at the true gap, not at the film's floor
+                k_true = forms.contact_law(np.minimum(H_true[1:], H_true[:-1]),
+                                           prm.as_form_args())[1]
+                scale = np.minimum(scale, (prm.Dn / np.maximum(kc, k_true)) ** 0.25)
     dx = np.diff(X)
     mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
     if not mark.any() or X.size + mark.sum() > max_cells:

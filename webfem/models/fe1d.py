@@ -32,7 +32,7 @@ from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2
 
 from ..case import Case
 from ..errors import InputError
-from ..fem import forms
+from ..fem import fast, forms
 from ..fem.mesh import graded_nodes, line_mesh, refine_nodes
 from ..fem.meshfile import read_x_nodes
 from ..fem.newton import newton
@@ -91,6 +91,7 @@ class FoilBearing1D:
         self.free_P = np.intersect1d(self.iP, self.free)
         self.free_W = np.intersect1d(self.iW_all, self.free)
         self.pbasis, self.wbasis = self.basis.split_bases()
+        self._assembler = None
 
     @property
     def n_dofs(self) -> int:
@@ -112,16 +113,30 @@ class FoilBearing1D:
             return {"W": W, "Dn": prm.Dn, **coef}
         return {"Dn": prm.Dn, **forms.jacobian_coefficients(coef, newton)}
 
-    def residual(self, u, prm: FoilParameters) -> np.ndarray:
+    @property
+    def assembler(self) -> fast.LineAssembler:
+        """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
+        if self._assembler is None:
+            self._assembler = fast.LineAssembler(self.basis, self.sink_basis
+                                                 if self.order == 1 else None)
+        return self._assembler
+
+    def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
+        """The coupled residual; ``reference=True`` (or ``fast.USE_FORMS``) assembles it with
+        the decorated forms, otherwise :mod:`webfem.fem.fast` does."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.residual(u, prm, sink=self.order == 2)
         F = forms.residual.assemble(self.basis, **self._state(self.basis, u, prm))
         if prm.K and self.order == 1:
             sb = self.sink_basis
             F += forms.sink_residual.assemble(sb, **self._state(sb, u, prm, sink=True))
         return F
 
-    def jacobian(self, u, prm: FoilParameters, newton: bool = True):
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True, reference: bool = False):
         """Exact Jacobian, or (``newton=False``) the Picard operator with frozen film
-        coefficients."""
+        coefficients; ``reference`` as in :meth:`residual`."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.jacobian(u, prm, bool(newton), sink=self.order == 2)
         J = forms.jacobian.assemble(self.basis, **self._state(self.basis, u, prm, False,
                                                               bool(newton)))
         if prm.K and self.order == 1:

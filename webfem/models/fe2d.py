@@ -30,7 +30,7 @@ from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
 
 from ..case import Case
 from ..errors import InputError
-from ..fem import forms
+from ..fem import fast, forms
 from ..fem.film2d import film_coefficients, film_jacobian, film_residual
 from ..fem.mesh import line_mesh
 from ..fem.newton import newton
@@ -80,6 +80,7 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass = None
+        self._assembler = None
         #: the 1-D problem and state this problem started from (width continuation)
         self.line_start = None
 
@@ -97,7 +98,18 @@ class FoilBearing2D:
         P = self.fbasis.interpolate(p)
         return P, H
 
-    def residual(self, u, prm: FoilParameters) -> np.ndarray:
+    @property
+    def assembler(self) -> fast.FilmAssembler:
+        """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
+        if self._assembler is None:
+            self._assembler = fast.FilmAssembler(self.fbasis, self.wbasis, self.T, self.width)
+        return self._assembler
+
+    def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
+        """The coupled residual; ``reference=True`` (or ``fast.USE_FORMS``) assembles it with
+        the decorated forms, otherwise :mod:`webfem.fem.fast` does."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.residual(u, prm)
         p, w = self._split(u)
         P, H = self._film_state(u, prm)
         args = prm.as_form_args()
@@ -110,7 +122,11 @@ class FoilBearing2D:
         Fw -= self.T["M"].T @ (self.T["dx"] * Pq) / self.width
         return np.concatenate([Fp, Fw])
 
-    def jacobian(self, u, prm: FoilParameters, newton: bool = True):
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True, reference: bool = False):
+        """Exact Jacobian, or (``newton=False``) Picard's; ``reference`` as in
+        :meth:`residual`."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.jacobian(u, prm, bool(newton))
         p, w = self._split(u)
         P, H = self._film_state(u, prm)
         args = prm.as_form_args()

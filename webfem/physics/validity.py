@@ -8,12 +8,12 @@ Examples
 >>> thin_film_check(Case().updated({"web.tension": 1e-6}))
 Traceback (most recent call last):
 ...
-webfem.errors.InputError: web.tension = 1e-06 N/m with U = 20 m/s and air.viscosity = 1.81e-05 Pa s gives a film R eps^(2/3) = 9.22 m thick, more than R/100 = 0.00055 m: the thin-film (Reynolds) model does not hold; raise web.tension or lower the speeds or air.viscosity
+webfem.errors.NoAdmissibleSolution: web.tension = 1e-06 N/m with U = 20 m/s and air.viscosity = 1.81e-05 Pa s gives a film R eps^(2/3) = 9.22 m thick, more than R/100 = 0.00055 m: the thin-film (Reynolds) model does not hold; raise web.tension or lower the speeds or air.viscosity
 """
 
 from __future__ import annotations
 
-from ..errors import InputError
+from ..errors import NoAdmissibleSolution
 from .contact import contact_pressure
 
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
@@ -34,7 +34,7 @@ def thin_film_check(case) -> None:
     :data:`THIN_FILM_RATIO` R (the thin-film model does not hold)."""
     R = case.roller.radius
     if case.h_scale > THIN_FILM_RATIO * R:
-        raise InputError(
+        raise NoAdmissibleSolution(
             f"web.tension = {case.web.tension:g} N/m with U = {case.U:g} m/s and "
             f"air.viscosity = {case.air.viscosity:g} Pa s gives a film R eps^(2/3) = "
             f"{case.h_scale:.3g} m thick, more than R/100 = {THIN_FILM_RATIO * R:.2g} m: the "
@@ -47,7 +47,7 @@ def wrap_length_check(case) -> None:
     (very low speed: the FE mesh would need too many cells; the web rests on its asperities
     there, which the closed form describes)."""
     if case.beta > BETA_MAX:
-        raise InputError(
+        raise NoAdmissibleSolution(
             f"roller.speed = {case.roller.speed:g} m/s (U = {case.U:.3g} m/s) makes the wrap "
             f"beta = {case.beta:.4g} entry lengths long, beyond the FE models' limit "
             f"{BETA_MAX:g}: the air film is negligible there (boundary lubrication); use "

@@ -13,7 +13,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 from ..api import solve_along
-from ..errors import InputError
+from ..errors import InputError, NoAdmissibleSolution
 from ..result import Result
 
 __all__ = ["solve_chunk", "PointError", "solve_path", "Processes", "Dask", "DASK_TIMEOUT_S"]
@@ -32,13 +32,18 @@ class PointError:
 def solve_path(cases, model: str, options):
     """``solve_along`` over ``cases``, going on after a point that raises: it becomes a
     :class:`PointError` and the next point starts cold (one bad point must not cost the
-    rest of the sweep). Input errors are the caller's and propagate."""
+    rest of the sweep). Input errors are the caller's and propagate, except a point the
+    models cannot answer (:class:`~webfem.errors.NoAdmissibleSolution`), which is kept
+    with its message like a failure."""
     i = 0
     while i < len(cases):
         try:
             for res in solve_along(cases[i:], model, options):
                 i += 1
                 yield res
+        except NoAdmissibleSolution as err:
+            i += 1
+            yield PointError(str(err))
         except InputError:
             raise
         except Exception as err:   # noqa: BLE001 - recorded in the row, the sweep goes on

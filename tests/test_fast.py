@@ -1,0 +1,122 @@
+"""The vectorised assembly (webfem.fem.fast) against the decorated weak forms it implements.
+
+Residual and Jacobian of the 1-D (P1 and P2 pressure, Hermite web) and 2-D (Q1 and Q2 film,
+Hermite web) systems at a state that is not a solution, with contact, compressibility,
+permeation (with the sink's own compressibility), slip and bending all non-zero, exact
+Newton and Picard's frozen-coefficient operator.
+"""
+
+import numpy as np
+import pytest
+
+from webfem.fem import fast
+from webfem.fem.mesh import graded_nodes
+from webfem.fem.scaling import FoilParameters
+from webfem.fem.transfer import width_nodes
+from webfem.models.fe1d import FoilBearing1D
+from webfem.models.fe2d import FoilBearing2D
+
+PRM = FoilParameters(beta=12.0, K=0.08, d=0.4, ds=0.2, slip=0.07, Dn=0.03, c=0.6, S=0.12,
+                     contact=1.0, floor=0.02, H_c=0.3)
+TOL = 1e-12
+
+
+def _state(problem, rng):
+    """A smooth, non-trivial state: the model's own start plus a perturbation."""
+    u = problem.initial_guess(PRM) if hasattr(problem, "initial_guess") else None
+    return u
+
+
+def _relative(a, b):
+    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+def _line_state(p):
+    rng = np.random.default_rng(1)
+    u = p.initial_guess(PRM)
+    u[p.iP] += 0.3 * np.sin(p.basis.doflocs[0][p.iP])
+    u[p.iW] *= 1.0 + 0.2 * rng.random(p.iW.size)
+    u[p.fixed] = 0.0
+    return u
+
+
+@pytest.fixture(scope="module", params=[1, 2])
+def line(request):
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=request.param)
+    return p, _line_state(p)
+
+
+def test_line_residual(line):
+    p, u = line
+    fast_F, ref_F = p.residual(u, PRM), p.residual(u, PRM, reference=True)
+    assert np.max(np.abs(ref_F)) > 1e-3            # the state is not a solution
+    assert _relative(fast_F, ref_F) < TOL
+
+
+@pytest.mark.parametrize("newton", [True, False])
+def test_line_jacobian(line, newton):
+    p, u = line
+    A = p.jacobian(u, PRM, newton).toarray()
+    B = p.jacobian(u, PRM, newton, reference=True).toarray()
+    assert _relative(A, B) < TOL
+
+
+def test_line_terms_are_on():
+    """Each effect changes the residual: a test of the fast path against the forms with one
+    of them silently dropped by both would pass otherwise."""
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=1)
+    u = _line_state(p)
+    base = p.residual(u, PRM)
+    for name in ("K", "d", "ds", "slip", "Dn", "c"):
+        off = p.residual(u, FoilParameters(**{**PRM.__dict__, name: 0.0}))
+        assert np.max(np.abs(off - base)) > 1e-6, name
+
+
+@pytest.fixture(scope="module", params=[1, 2])
+def film(request):
+    X = graded_nodes(PRM.beta, 6.0, level=0)
+    p1 = FoilBearing1D(X)
+    u1 = _line_state(p1)
+    p = FoilBearing2D(X, width_nodes(3.0), order=request.param)
+    u = p.start_from_line(p1, u1, PRM)
+    loc = p.fbasis.doflocs
+    u[:p.nP] *= 1.0 + 0.3 * np.cos(loc[0]) * np.sin(loc[1])
+    u[p.fixed] = 0.0
+    return p, u
+
+
+def test_film_residual(film):
+    p, u = film
+    fast_F, ref_F = p.residual(u, PRM), p.residual(u, PRM, reference=True)
+    assert np.max(np.abs(ref_F)) > 1e-3
+    assert _relative(fast_F[:p.nP], ref_F[:p.nP]) < TOL
+    assert _relative(fast_F[p.nP:], ref_F[p.nP:]) < TOL
+
+
+@pytest.mark.parametrize("newton", [True, False])
+def test_film_jacobian(film, newton):
+    p, u = film
+    A = p.jacobian(u, PRM, newton).toarray()
+    B = p.jacobian(u, PRM, newton, reference=True).toarray()
+    assert _relative(A, B) < TOL
+
+
+def test_module_flag_selects_the_forms(monkeypatch):
+    """``fast.USE_FORMS`` routes the models' assembly through the decorated forms."""
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
+    u = _line_state(p)
+    calls = []
+    monkeypatch.setattr(type(p), "assembler", property(lambda self: calls.append(1)))
+    monkeypatch.setattr(fast, "USE_FORMS", True)
+    p.residual(u, PRM)
+    p.jacobian(u, PRM)
+    assert calls == []
+
+
+def test_pattern_is_shared():
+    """Every Jacobian of a mesh has the same index arrays (the solver caches on them)."""
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
+    u = _line_state(p)
+    A, B = p.jacobian(u, PRM), p.jacobian(2.0 * u, PRM)
+    assert A.indices is B.indices and A.indptr is B.indptr
+    assert A.has_canonical_format
