@@ -288,7 +288,10 @@ def test_traction_loss_speeds_take_units(capsys):
                  "metric"]) == 0
     out = capsys.readouterr().out
     assert "m/min" in out and "m/s" not in out
-    assert main(["traction-loss", "base", "--mu-min", "0.1", "--max-speed", "3 kg"]) == 2
+    with pytest.raises(SystemExit) as exit_:   # a usage error, as for any bad flag value
+        main(["traction-loss", "base", "--mu-min", "0.1", "--max-speed", "3 kg"])
+    assert exit_.value.code == 2
+    assert "'3 kg' has dimension mass; expected speed" in capsys.readouterr().err
 
 
 def test_bundled_cases_list_init_and_run_from_anywhere(tmp_path, monkeypatch, capsys):
@@ -309,6 +312,7 @@ def test_bundled_cases_list_init_and_run_from_anywhere(tmp_path, monkeypatch, ca
     assert (tmp_path / "base.toml").read_text() == "# mine\n"
     assert main(["init", "fig10_wrap", "sub/dir"]) == 0
     assert (tmp_path / "sub" / "dir" / "fig10_wrap.toml").exists()
+    capsys.readouterr()
     assert main(["init", "bsae"]) == 2
     assert "did you mean 'base'" in _one_line(capsys.readouterr().err)
     (tmp_path / "base.toml").unlink()

@@ -1,0 +1,218 @@
+"""A report to share: one self-contained HTML page of a solved case.
+
+The page holds, in this order, sections with these ``id`` attributes: ``inputs`` (every case
+key with its value, SI unit and meaning), ``model`` (which model answered, why, the effects
+included and the options), ``summary`` (the numbers with units), ``pictures`` (the film
+picture of :mod:`webfem.io.pictures` and any charts given, embedded as base64 PNG),
+``warnings`` and ``computed`` (mesh, iterations, residual, time, webfem and Python versions).
+Nothing is fetched: no scripts, no style sheets or images from elsewhere, so a colleague
+opens the file in any browser without webfem.
+
+Examples
+--------
+>>> import tempfile, webfem
+>>> result = webfem.solve(webfem.Case(), model="closed-form")
+>>> with tempfile.TemporaryDirectory() as d:
+...     page = write_report(result, d, title="demo")
+...     text = page.read_text()
+>>> page.name, 'id="summary"' in text, "<script" in text
+('report.html', True, False)
+"""
+
+from __future__ import annotations
+
+import base64
+import dataclasses
+import datetime
+import math
+import platform
+import tempfile
+from html import escape
+from pathlib import Path
+
+from ..files import write_text
+
+__all__ = ["write_report", "report_html", "SECTIONS", "SUMMARY_UNITS"]
+
+#: The sections of the page: id -> heading.
+SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
+            "pictures": "Pictures", "warnings": "Warnings", "computed": "How it was computed"}
+
+#: Summary key -> (unit, meaning) for the summary table; lengths shown in um.
+SUMMARY_UNITS = {
+    "mu": ("-", "wrap-averaged friction coefficient"),
+    "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
+    "regime": ("", "lubrication regime over most of the wrap"),
+    "h_center": ("um", "gap at the wrap centre"), "h_inlet": ("um", "gap at the inlet edge"),
+    "h_outlet": ("um", "gap at the outlet edge"), "h_min": ("um", "smallest gap"),
+    "x_min": ("mm", "position of the smallest gap"),
+    "h_c": ("um", "contact gap: boundary lubrication below"),
+    "sigma": ("um", "combined RMS roughness (fluid above 3 sigma)"),
+    "share_boundary": ("-", "share of the wrap in boundary lubrication"),
+    "share_mixed": ("-", "share of the wrap in mixed lubrication"),
+    "share_fluid": ("-", "share of the wrap in fluid lubrication"),
+    "contact_share": ("-", "share of the wrap load carried by the asperities"),
+    "lambda": ("-", "width parameter L / (2 R eps^(1/3))"),
+    "beta": ("-", "wrap parameter B / eps^(1/3)"),
+    "eq21_valid": ("", "inside Eq. 21's range (beta > 6, lambda > 7)"),
+    "T_eff": ("N/m", "effective tension T - rho_w t U_w^2"),
+    "bending_stiffness_used": ("N m", "bending stiffness used"),
+    "slip_margin": ("-", "idler: available / required tension difference"),
+    "delta_T_required": ("N/m", "idler: tension difference needed"),
+    "delta_T_available": ("N/m", "idler: tension difference available"),
+}
+_SCALE = {"um": 1e6, "mm": 1e3}
+
+_STYLE = """
+body{font-family:system-ui,-apple-system,'Segoe UI',Helvetica,Arial,sans-serif;margin:0 auto;
+max-width:62rem;padding:1rem 1.5rem;color:#222;line-height:1.4}
+h1{font-size:1.5rem;margin-bottom:.2rem}h2{font-size:1.15rem;border-bottom:1px solid #ccc;
+padding-bottom:.2rem;margin-top:1.8rem}.sub{color:#555;margin-top:0}
+table{border-collapse:collapse;font-size:.9rem;margin:.5rem 0}
+td,th{border-bottom:1px solid #e4e4e4;padding:.2rem .7rem;text-align:left;vertical-align:top}
+td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+th{background:#f4f4f4}figure{margin:1rem 0}img{max-width:100%;height:auto;border:1px solid #ddd}
+figcaption{font-size:.85rem;color:#555}.warn{background:#fff4e0;border-left:4px solid #e8a33d;
+padding:.4rem .7rem;margin:.3rem 0}.ok{color:#2a7a2a}.key{font-family:monospace}
+nav a{margin-right:1rem}
+"""
+
+
+def _num(value) -> str:
+    if isinstance(value, bool) or value is None:
+        return "-" if value is None else ("yes" if value else "no")
+    if isinstance(value, (int, float)):
+        return f"{value:.5g}" if math.isfinite(value) else "n/a"
+    if isinstance(value, (list, tuple)):
+        return ", ".join(map(str, value)) or "-"
+    return str(value)
+
+
+def _table(head, rows) -> str:
+    out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
+    for row in rows:
+        out.append("<tr>" + "".join(
+            f'<td class="n">{escape(c)}</td>' if i == 1 else f"<td>{escape(c)}</td>"
+            for i, c in enumerate(row)) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def _inputs(case) -> str:
+    rows = []
+    for section in dataclasses.fields(case):
+        part = getattr(case, section.name)
+        if not dataclasses.is_dataclass(part):
+            continue
+        for f in dataclasses.fields(part):
+            meta, value = f.metadata, getattr(part, f.name)
+            unit = meta.get("unit", "")
+            if value is None:
+                shown = "(left out) " + meta.get("absent", "")
+            else:
+                shown = _num(value)
+            rows.append((f"{section.name}.{f.name}", shown, unit, meta.get("doc", "")))
+    return _table(("key", "value", "unit (SI)", "meaning"), rows)
+
+
+def _model(result) -> str:
+    s, d = result.summary, result.diagnostics
+    used = s.model_used or s.model
+    lines = [f"<p>Asked for <b>{escape(s.model)}</b>; answered by <b>{escape(used)}</b>.</p>"]
+    if s.why:
+        err = ("" if s.estimated_error is None else
+               f" Estimated relative error in {escape(str(s.quantity))}: "
+               f"{s.estimated_error:.2g} (tolerance {s.tolerance:g}).")
+        lines.append(f"<p>Why: {escape(s.why)}.{err}</p>")
+    effects = ", ".join(s.effects) or "none beyond the paper's model"
+    lines.append(f"<p>Effects included: {escape(effects)}. Physics: "
+                 f"<span class=key>{escape(result.case.model.physics)}</span>.</p>")
+    options = d.options
+    if options is not None and hasattr(options, "to_dict"):
+        rows = [(k, _num(v), "", "changed" if k in options.changed() else "default")
+                for k, v in options.to_dict().items()]
+        lines.append(_table(("option", "value", "", ""), rows))
+    return "\n".join(lines)
+
+
+def _summary(result) -> str:
+    data = result.summary
+    rows = []
+    for key, (unit, meaning) in SUMMARY_UNITS.items():
+        value = data.get(key)
+        if value is None:
+            continue
+        if isinstance(value, float) and unit in _SCALE:
+            value = value * _SCALE[unit]
+        rows.append((key, _num(value), unit, meaning))
+    return _table(("quantity", "value", "unit", "meaning"), rows)
+
+
+def _picture(path: Path, caption: str) -> str:
+    data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
+    return (f'<figure><img alt="{escape(caption)}" src="data:image/png;base64,{data}">'
+            f"<figcaption>{escape(caption)}</figcaption></figure>")
+
+
+def _computed(result, version: str) -> str:
+    s, d = result.summary, result.diagnostics
+    rows = [("model", s.model_used or s.model, "", ""),
+            ("method", s.method or d.method or "closed form", "", ""),
+            ("mesh", s.mesh or "none (closed form)", "", ""),
+            ("unknowns", _num(s.n_dofs), "", ""), ("cells", _num(s.n_cells), "", ""),
+            ("refinement rounds", _num(s.adapt_rounds), "", ""),
+            ("iterations", _num(s.iterations), "", ""),
+            ("final residual", _num(s.residual), "", "scaled"),
+            ("solver", s.solver_message or d.reason or "-", "", ""),
+            ("converged", _num(s.converged), "", ""),
+            ("solve time", _num(s.solve_time_s), "s", ""),
+            ("webfem", version, "", ""),
+            ("Python", platform.python_version(), "", platform.platform(terse=True)),
+            ("written", datetime.datetime.now().isoformat(timespec="seconds"), "", "")]
+    return _table(("", "value", "unit", ""), rows)
+
+
+def report_html(result, *, title: str = "", pictures=(), version: str = "") -> str:
+    """The page as text. ``pictures``: ``(png path, caption)`` pairs, embedded in order."""
+    s = result.summary
+    used = s.model_used or s.model
+    title = title or "webfem report"
+    warn = "".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings) \
+        or '<p class="ok">No warnings.</p>'
+    figures = "\n".join(_picture(p, c) for p, c in pictures) or "<p>No pictures.</p>"
+    body = {"inputs": _inputs(result.case), "model": _model(result),
+            "summary": _summary(result), "pictures": figures, "warnings": warn,
+            "computed": _computed(result, version)}
+    head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)}, smallest gap "
+            f"{s.h_min * 1e6:.3g} um; model {escape(used)}"
+            f"{'' if s.converged else ' (NOT converged)'}</p>")
+    nav = "<nav>" + "".join(f'<a href="#{k}">{v}</a>' for k, v in SECTIONS.items()) + "</nav>"
+    sections = "\n".join(f'<section id="{k}"><h2>{SECTIONS[k]}</h2>\n{body[k]}\n</section>'
+                         for k in SECTIONS)
+    return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+            f'<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{escape(title)}</title><style>{_STYLE}</style></head>\n<body>"
+            f"<h1>{escape(title)}</h1>{head}{nav}\n{sections}\n</body></html>\n")
+
+
+def write_report(result, folder, *, title: str = "", charts=(), name: str = "report.html"
+                 ) -> Path:
+    """Write the page into ``folder`` (created if missing) and return its path.
+
+    The film picture (:func:`webfem.io.pictures.film_figure`) is drawn for every result;
+    ``charts`` adds ``(png path, caption)`` pairs after it. The page appears whole or not at
+    all.
+    """
+    from .. import __version__
+    from .pictures import film_figure
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    used = result.summary.model_used or result.summary.model
+    with tempfile.TemporaryDirectory(prefix=".webfem-report-", dir=folder) as tmp:
+        film = film_figure(result, Path(tmp) / "film.png")
+        caption = (("Film pressure over the full width, " if result.film is not None else "")
+                   + f"gap along the centre line and local friction in the wrap ({used}).")
+        html = report_html(result, title=title, version=__version__,
+                           pictures=[(film, caption), *charts])
+    return write_text(folder / name, html)
