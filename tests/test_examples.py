@@ -73,10 +73,10 @@ def test_ex04_vtu_paraview(tmp_path):
     value, _ = run_example("ex04_vtu_paraview.py", str(tmp_path))
     film = meshio.read(tmp_path / "base_fe2d_film.vtu")
     web = meshio.read(tmp_path / "base_fe2d_web.vtu")
-    assert "p_rel" in film.point_data and len(film.cells[0].data) > 100
+    assert "p-p_a [Pa]" in film.point_data and len(film.cells[0].data) > 100
     centre = np.argmin(np.abs(web.points[:, 0]))
     case = base(**{"roller.speed": 40.0})
-    load = (web.point_data["p_rel"][centre] + web.point_data["p_contact"][centre]) / (
+    load = (web.point_data["p-p_a [Pa]"][centre] + web.point_data["p_contact [Pa]"][centre]) / (
         case.web.tension / case.roller.radius)
     assert value == pytest.approx(load, rel=1e-12)
     assert value == pytest.approx(1.0, abs=5e-3)

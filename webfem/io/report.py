@@ -69,7 +69,7 @@ max-width:62rem;padding:1rem 1.5rem;color:#222;line-height:1.4}
 h1{font-size:1.5rem;margin-bottom:.2rem}h2{font-size:1.15rem;border-bottom:1px solid #ccc;
 padding-bottom:.2rem;margin-top:1.8rem}.sub{color:#555;margin-top:0}
 table{border-collapse:collapse;font-size:.9rem;margin:.5rem 0}
-td,th{border-bottom:1px solid #e4e4e4;padding:.2rem .7rem;text-align:left;vertical-align:top}
+table.wide{width:100%}td,th{border-bottom:1px solid #e4e4e4;padding:.2rem .7rem;text-align:left;vertical-align:top}
 td.n{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 th{background:#f4f4f4}figure{margin:1rem 0}img{max-width:100%;height:auto;border:1px solid #ddd}
 figcaption{font-size:.85rem;color:#555}.warn{background:#fff4e0;border-left:4px solid #e8a33d;
@@ -106,12 +106,12 @@ def _inputs(case) -> str:
             continue
         for f in dataclasses.fields(part):
             meta, value = f.metadata, getattr(part, f.name)
-            unit = meta.get("unit", "")
-            if value is None:
-                shown = "(left out) " + meta.get("absent", "")
+            unit, doc = meta.get("unit", ""), meta.get("doc", "")
+            if value is None:   # left out: the key says what that means
+                shown, doc = "left out", f"{doc}; left out: {meta.get('absent', '')}"
             else:
                 shown = _num(value)
-            rows.append((f"{section.name}.{f.name}", shown, unit, meta.get("doc", "")))
+            rows.append((f"{section.name}.{f.name}", shown, unit, doc))
     return _table(("key", "value", "unit (SI)", "meaning"), rows)
 
 
@@ -119,7 +119,11 @@ def _model(result) -> str:
     s, d = result.summary, result.diagnostics
     used = s.model_used or s.model
     lines = [f"<p>Asked for <b>{escape(s.model)}</b>; answered by <b>{escape(used)}</b>.</p>"]
-    if s.why:
+    if not s.why:
+        lines.append("<p>Why: asked for by name (<span class=key>--model</span>); "
+                     "<span class=key>--model auto</span> picks the simplest model within "
+                     "its tolerance.</p>")
+    else:
         err = ("" if s.estimated_error is None else
                f" Estimated relative error in {escape(str(s.quantity))}: "
                f"{s.estimated_error:.2g} (tolerance {s.tolerance:g}).")
@@ -129,9 +133,12 @@ def _model(result) -> str:
                  f"<span class=key>{escape(result.case.model.physics)}</span>.</p>")
     options = d.options
     if options is not None and hasattr(options, "to_dict"):
-        rows = [(k, _num(v), "", "changed" if k in options.changed() else "default")
-                for k, v in options.to_dict().items()]
-        lines.append(_table(("option", "value", "", ""), rows))
+        changed = options.changed()
+        if changed:
+            lines.append(_table(("option", "value"), [(k, _num(v)) for k, v in
+                                                      changed.items()]))
+        lines.append(f"<p>{'Every other' if changed else 'Every'} option of "
+                     f"{escape(s.model)} at its default.</p>")
     return "\n".join(lines)
 
 

@@ -1,0 +1,153 @@
+"""Pictures, charts and ParaView files that explain themselves: panels, markers, level labels,
+units in the array names, integer regimes with their names, the full width, the in-wrap flag."""
+
+import meshio
+import numpy as np
+import pytest
+from matplotlib.text import Text
+from PIL import Image
+
+import webfem
+from webfem.io.charts import needs_markers, sweep_chart
+from webfem.io.meshes import write_meshes
+from webfem.io.pictures import film_figure, film_pictures
+from webfem.io.vtu import ARRAY_NAMES, FILM_FIELDS, WEB_FIELDS, read_field_data, write_result
+from webfem.io.vtu import write_pvd
+
+# a narrow web on a small wrap: a quick fe2d solve
+FAST = webfem.Case().updated({"web.width": 0.025, "wrap.angle_deg": 30.0,
+                              "roller.speed": 30.0})
+
+
+@pytest.fixture(scope="module")
+def film_result():
+    return webfem.solve(FAST, model="fe2d")
+
+
+def test_film_picture_has_three_panels_and_full_width(film_result, tmp_path):
+    [path] = film_pictures(film_result, tmp_path, "fast")
+    assert path.name == "fast_film.png"
+    with Image.open(path) as im:
+        width, height = im.size
+    assert 600 < width < 1000 and 0.9 * width < height < 1.2 * width   # 3 panels, compact
+    import matplotlib.pyplot as plt
+    from webfem.io import pictures
+    seen = {}
+    real_save = pictures._save
+
+    def keep(fig, target):
+        seen["fig"] = fig
+        seen["axes"] = [(a.get_xlim(), a.get_ylim(), a.get_ylabel(), a.get_xlabel())
+                        for a in fig.axes]
+        return real_save(fig, target)
+
+    pictures._save = keep
+    try:
+        film_figure(film_result, tmp_path / "again.png")
+    finally:
+        pictures._save = real_save
+    panels = [a for a in seen["axes"] if a[2]]   # the colour bar's label is set on itself
+    xlims = {a[0] for a in panels if "[mm]" in a[2] or "[um]" in a[2] or "[-]" in a[2]}
+    assert len(xlims) == 1   # shared arc axis: the panels are aligned
+    z_axis = next(a for a in panels if a[2].startswith("z across"))
+    half_width = FAST.web.width / 2 * 1e3
+    assert z_axis[1][0] <= -0.99 * half_width and z_axis[1][1] >= 0.99 * half_width
+    assert any("[um]" in a[2] for a in panels) and any("mu" in a[2] for a in panels)
+    assert seen["axes"][-1][3] == "" or any("[mm]" in a[3] for a in seen["axes"])
+    plt.close("all")
+
+
+def test_line_picture_without_film(tmp_path):
+    result = webfem.solve(webfem.Case(), model="closed-form")
+    path = film_figure(result, tmp_path / "cf.png")
+    with Image.open(path) as im:
+        assert im.size[1] < im.size[0]   # two panels only
+
+
+def test_markers_on_sparse_or_log_sweeps():
+    assert needs_markers(np.linspace(1, 40, 10))
+    assert needs_markers(np.geomspace(0.5, 40, 80))
+    assert not needs_markers(np.linspace(0.5, 40, 80))
+
+
+def rows(series, h_c, n=40):
+    out = []
+    for label, hc in zip(series, h_c):
+        for u in np.linspace(1, 40, n):
+            out.append({"series": label, "parameter": "web.tension", "value": u,
+                        "model": "fe1d", "mu": 0.3 - u / 200, "h_center": 1e-6 * u,
+                        "h_inlet": 1.2e-6 * u, "h_outlet": 0.9e-6 * u, "converged": True,
+                        "h_c": hc, "sigma": 4e-6})
+    return out
+
+
+def test_sweep_chart_labels_each_level_once_on_the_gap_axis(tmp_path, monkeypatch):
+    from webfem.io import charts
+    seen = {}
+    real_save = charts._save
+
+    def keep(fig, target):
+        seen["texts"] = [(t.get_text(), t.axes) for a in fig.axes for t in a.texts]
+        seen["axes"] = fig.axes
+        seen["legends"] = fig.legends
+        fig.canvas.draw()
+        # the labels' text alone (an annotation's extent includes its leader line)
+        seen["positions"] = [Text.get_window_extent(t) for a in fig.axes for t in a.texts]
+        return real_save(fig, target)
+
+    monkeypatch.setattr(charts, "_save", keep)
+    sweep_chart(rows(["a", "b", "c"], [4.94e-6, 4.95e-6, 3.3e-6]), tmp_path / "c.png")
+    texts = [t for t, _ in seen["texts"]]
+    assert sum(t.startswith("h_c = 4.94") for t in texts) == 1
+    assert sum(t.startswith("h_c = 4.95") for t in texts) == 1
+    assert sum(t.startswith("3 sigma = 12.00") for t in texts) == 1   # shared: one label
+    gap_axis = seen["axes"][1]
+    assert all(ax is gap_axis for _, ax in seen["texts"])
+    boxes = seen["positions"]   # no two labels on top of each other
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1:]:
+            assert not a.overlaps(b)
+    assert seen["legends"] and not seen["axes"][0].get_legend()   # outside the data
+
+
+def test_vtu_arrays_carry_units_and_meaning(film_result, tmp_path):
+    web_path, film_path = write_result(film_result, tmp_path, "fast")
+    web, film = meshio.read(web_path), meshio.read(film_path)
+    assert set(WEB_FIELDS) <= set(web.point_data) and set(FILM_FIELDS) <= set(film.point_data)
+    assert ARRAY_NAMES["h"] == "h [m]" and ARRAY_NAMES["p_rel"] == "p-p_a [Pa]"
+    assert np.allclose(web.point_data["h [m]"], film_result.fields["h"])
+    assert web.point_data["regime"].dtype.kind == "i"
+    assert set(np.unique(web.point_data["regime"])) <= {0, 1, 2}
+    flag = film.point_data["in_wrap"]
+    half = FAST.roller.radius * FAST.B / 2
+    assert np.array_equal(flag == 1, np.abs(film.points[:, 0]) <= half * (1 + 1e-12))
+    # the full width, mirrored from the half solved, the centre line shared
+    y = film.points[:, 1]
+    assert y.min() == pytest.approx(-FAST.web.width / 2) and y.max() == pytest.approx(
+        FAST.web.width / 2)
+    assert len(film.points) < 2 * len(film_result.film["points"])
+    p = film.point_data["p-p_a [Pa]"]
+    key = np.round(film.points[:, :2] * 1e9).astype(np.int64)
+    lookup = {tuple(k): v for k, v in zip(key, p)}
+    assert all(lookup[(k[0], -k[1])] == pytest.approx(v) for k, v in zip(key, p))
+    data = read_field_data(film_path)
+    assert data["regime 2 = fluid (h > 3 sigma)"] == 2.0
+    assert data["mu (wrap average) [-]"] == pytest.approx(film_result["mu"])
+    assert any(k.startswith("X = arc") for k in data)
+
+
+def test_pvd_names_the_swept_parameter(tmp_path):
+    path = write_pvd([(1.0, tmp_path / "a.vtu")], tmp_path / "s.pvd", parameter="web.tension")
+    text = path.read_text()
+    assert 'parameter="web.tension"' in text and "time (timestep) = web.tension" in text
+
+
+def test_stored_meshes_say_what_their_coordinates_mean(tmp_path):
+    web, film = write_meshes(np.linspace(-0.03, 0.03, 7), np.linspace(0, 0.01, 3), tmp_path,
+                             "m", half_wrap=0.02)
+    mesh = meshio.read(film)
+    assert np.array_equal(mesh.point_data["arc x [m]"], mesh.points[:, 0])
+    assert np.array_equal(mesh.point_data["in_wrap"] == 1, np.abs(mesh.points[:, 0]) <= 0.02 * (1 + 1e-12))
+    data = read_field_data(web)
+    assert any(k.startswith("X = arc from the wrap centre [m]") for k in data)
+    assert data["wrap edges at X = -+0.02 m (R B / 2)"] == 0.02

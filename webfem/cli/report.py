@@ -1,0 +1,40 @@
+"""``webfem report``: solve one case and write a self-contained HTML page to share."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ..api import solve
+from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
+                     options_epilog, output_folder)
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser(
+        "report", help="solve a case and write one HTML page to share (inputs, model, "
+                       "summary, pictures, warnings, how it was computed)",
+        description="Solve CASE and write DIR/CASE_MODEL.html: a single page with the "
+                    "pictures embedded, that opens in any browser without webfem.",
+        formatter_class=HELP_FORMATTER, epilog=options_epilog())
+    add_case_arguments(p)
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder for the page")
+
+
+def run(args) -> int:
+    from ..io.report import write_report
+
+    case = case_from(args)
+    options = model_options(args)
+    folder = output_folder(args.out, "--out")
+    stem = f"{Path(args.case).stem}_{args.model}"
+    # a ConvergenceError reaches main (exit 3): a report of an unconverged solve would be
+    # shared as if it were an answer
+    result = solve(case, model=args.model, options=options)
+    path = write_report(result, folder, name=f"{stem}.html",
+                        title=f"webfem report: {Path(args.case).stem} ({args.model})")
+    print(f"wrote {path}")
+    if result.summary.warnings:
+        print(f"webfem: {len(result.summary.warnings)} warning(s), listed in the page",
+              file=sys.stderr)
+    return 0
