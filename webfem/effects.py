@@ -27,7 +27,9 @@ __all__ = ["EffectRow", "EffectsTable", "effects_table"]
 @dataclass(frozen=True)
 class EffectRow:
     """One solve: the ``effect`` switched off (or "all included"), the keys changed, the
-    gaps [m] and mu, and their relative changes against the solve with every effect."""
+    gaps [m] and mu, and their relative changes against the solve with every effect (for a
+    mu below 1e-3, as on an idler where nothing slides, the change of mu is absolute), and
+    an idler's slip margin."""
 
     effect: str
     switched: dict
@@ -37,6 +39,7 @@ class EffectRow:
     d_h_center: float
     d_h_min: float
     d_mu: float
+    slip_margin: float | None = None
 
     def to_dict(self) -> dict:
         return dict(self.__dict__)
@@ -57,14 +60,20 @@ class EffectsTable:
 
     def text(self) -> str:
         """A fixed-width table: how much switching each effect off moves the answer."""
+        idler = self.rows[0].slip_margin is not None
         lines = [f"effects on {self.model}: the answer with every effect, then with each "
                  "one switched off (change relative to all included)",
                  f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
-                 f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>9}"]
+                 f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>10}"
+                 + (f"{'slip margin':>13}" if idler else "")]
+        small_mu = abs(self.rows[0].mu) < 1e-3
         for r in self.rows:
+            d_mu = (("-" if r.d_mu == 0 else f"{r.d_mu:+.4f}") if small_mu else _pct(r.d_mu))
             lines.append(f"  {r.effect:<24}{r.h_center * 1e6:>12.3f}{r.h_min * 1e6:>10.3f}"
                          f"{r.mu:>9.4f}{_pct(r.d_h_center):>12}{_pct(r.d_h_min):>10}"
-                         f"{_pct(r.d_mu):>9}")
+                         f"{d_mu:>10}" + (f"{r.slip_margin:>13.3g}" if idler else ""))
+        if small_mu:
+            lines.append("  (mu below 1e-3: its change is absolute, not relative)")
         if self.not_carried:
             lines.append(f"  ({', '.join(self.not_carried)}: not carried by {self.model})")
         return "\n".join(lines)
@@ -91,15 +100,17 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
     base = solve(case, model, options=opts)
     carried = tuple(base.summary.effects)
     rows = [EffectRow("all included", {}, base["h_center"], base["h_min"], base["mu"],
-                      0.0, 0.0, 0.0)]
+                      0.0, 0.0, 0.0, base["slip_margin"])]
     if progress:
         progress(1, total)
     for i, effect in enumerate(effects, start=2):
         switched = SWITCH_OFF[effect]
         r = solve(case.updated(switched), model, options=opts)
+        d_mu = (r["mu"] - base["mu"] if abs(base["mu"]) < 1e-3
+                else _rel(r["mu"], base["mu"]))
         rows.append(EffectRow(effect, dict(switched), r["h_center"], r["h_min"], r["mu"],
                               _rel(r["h_center"], base["h_center"]),
-                              _rel(r["h_min"], base["h_min"]), _rel(r["mu"], base["mu"])))
+                              _rel(r["h_min"], base["h_min"]), d_mu, r["slip_margin"]))
         if progress:
             progress(i, total)
     missing = tuple(e for e in effects if e not in carried)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -47,5 +48,5 @@ def run(args) -> int:
         from ..io.idler_chart import idler_chart
         path = idler_chart(curve, folder / f"{Path(args.case).stem}_idler.png",
                            title=f"{Path(args.case).stem}: will the idler slip?")
-        print(f"wrote {path}")
+        print(f"wrote {path}", file=sys.stderr)
     return 0

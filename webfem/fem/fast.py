@@ -26,7 +26,7 @@ Examples
 >>> from skfem import Basis, ElementLineP1, MeshLine
 >>> b = BasisData(Basis(MeshLine(np.linspace(0.0, 1.0, 5)), ElementLineP1()))
 >>> pat = Pattern([b.pairs(b.all, b.all)], (b.N, b.N))
->>> A = pat.matrix([b.bilinear(b.phi, b.phi, np.ones(b.dx.shape))])     # the mass matrix
+>>> A = pat.matrix([b.bilinear(b.phi, b.phi, b.dx)])     # the mass matrix
 >>> round(float(A.sum()), 12)
 1.0
 """
