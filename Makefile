@@ -14,13 +14,16 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 # main job: the base case with the most complete model (2-D film + 1-D web) with its VTU
-# files and pictures, then the speed sweep with the 1-D FE model beside the closed form
+# files, picture and report, what each effect beyond the paper does, then the speed sweep
+# with the 1-D FE model beside the closed form
 run: $(STAMP)
 	mkdir -p $(OUT)/base
 	$(VENV)/bin/webfem solve cases/base.toml --model fe2d --json --vtu $(OUT)/base --plot > $(OUT)/base/solve.json
-	$(VENV)/bin/webfem solve cases/base.toml --model fe2d
-	$(VENV)/bin/webfem sweep cases/base.toml --out $(OUT)/base
-	$(VENV)/bin/webfem sweep cases/base.toml --model fe1d --out $(OUT)/base
+	$(VENV)/bin/webfem solve cases/base.toml
+	$(VENV)/bin/webfem effects cases/base.toml --model fe2d --quiet
+	$(VENV)/bin/webfem report cases/base.toml --model fe2d --out $(OUT)/base
+	$(VENV)/bin/webfem sweep cases/base.toml --model closed-form --out $(OUT)/base --quiet
+	$(VENV)/bin/webfem sweep cases/base.toml --model fe1d --out $(OUT)/base --quiet
 
 # the stored meshes of meshes/ (what the FE models start from for the cases)
 meshes: $(STAMP)

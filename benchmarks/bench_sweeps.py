@@ -1,4 +1,5 @@
-"""Sweep throughput of the 1-D FE model: serial (with continuation), local processes, Dask.
+"""Sweep throughput: the 24-point fe2d speed sweep and traction-loss search (issue 14's
+targets), then the 1-D FE model serial (with continuation), local processes, Dask.
 
 Run: ``python benchmarks/bench_sweeps.py [N_POINTS]`` (default 40 speeds of the base case).
 For each way it prints the wall time, solves per second and the ratio to serial, and where
@@ -25,6 +26,38 @@ WAYS = (("serial", {}),
         ("Dask LocalCluster, 2 workers", {"workers": 2, "dask": "local"}))
 
 
+def fe2d_targets(runs: int = 3):
+    """24-point fe2d speed sweep of the base case with continuation (median of ``runs``) and
+    ``webfem traction-loss cases/base.toml --mu-min 0.1 --model fe2d`` (one run, the CLI in
+    a fresh process, imports included)."""
+    import statistics
+    import subprocess
+
+    from common import target
+
+    from webfem.api import sweep
+    from webfem.sweepspec import load_sweep
+
+    spec = load_sweep("cases/base.toml").respaced(24)
+    times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        out = list(sweep(spec, "fe2d"))
+        times.append(time.perf_counter() - t0)
+    ok = sum(r["converged"] for _, _, r in out)
+    its = sum(r["iterations"] for _, _, r in out)
+    t = statistics.median(times)
+    print(f"fe2d speed sweep, 24 points {spec.values[0]:g}..{spec.values[-1]:g} m/s: {t:.2f} s "
+          f"(median of {runs}), {ok}/24 converged, {its} iterations")
+    print(target("24-point fe2d sweep", t, 4.0))
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "webfem", "traction-loss", "cases/base.toml",
+                    "--mu-min", "0.1", "--model", "fe2d"], check=True, capture_output=True)
+    t = time.perf_counter() - t0
+    print(f"webfem traction-loss cases/base.toml --mu-min 0.1 --model fe2d: {t:.2f} s (one run)")
+    print(target("traction-loss --model fe2d", t, 5.0))
+
+
 def main(n: int = 40):
     spec = Sweep("roller.speed", tuple(np.linspace(30.0, 44.0, n).tolist()), (("base", Case()),))
     serial_rate = None
@@ -44,4 +77,5 @@ def main(n: int = 40):
 
 
 if __name__ == "__main__":
+    fe2d_targets()
     main(int(sys.argv[1]) if len(sys.argv) > 1 else 40)

@@ -196,5 +196,6 @@ def test_cli_model_options(capsys):
                  "roller.speed=40", "--opt", "method=picard", "--opt", "level=1"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["method"] == "picard" and data["converged"]
-    assert main(["solve", "cases/base.toml", "--opt", "level=1"]) == 2
+    assert main(["solve", "cases/base.toml", "--model", "closed-form", "--opt",
+                 "level=1"]) == 2
     assert "unknown closed-form option 'level'" in capsys.readouterr().err

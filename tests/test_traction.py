@@ -55,7 +55,8 @@ def test_paper_trends_fe2d(key, low, high):
 
 
 def test_cli_traction_loss_json(capsys):
-    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.1", "--json"]) == 0
+    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.1", "--json", "--model",
+                 "closed-form"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["model"] == "closed-form" and 20.0 < out["speed"] < 35.0
 
@@ -172,10 +173,11 @@ def test_mu_curve_is_the_solved_mu():
 
 def test_traction_loss_chart_from_the_cli(tmp_path, capsys):
     assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.1", "--chart",
-                 str(tmp_path), "--points", "2", "--quiet"]) == 0
+                 str(tmp_path), "--points", "2", "--quiet", "--model", "closed-form"]) == 0
     assert (tmp_path / "base_traction_loss.png").stat().st_size > 10_000
     assert "mu falls below 0.1" in capsys.readouterr().out
-    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.5", "--json"]) == 4
+    assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.5", "--json", "--model",
+                 "closed-form"]) == 4
     assert json.loads(capsys.readouterr().out)["speed"] is None
 
 

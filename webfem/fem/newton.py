@@ -49,16 +49,23 @@ class PatternSolver:
         self._seen: dict = {}          # (id(indices), id(indptr)) -> (indices, indptr)
         self._plans: dict = {}         # (id(indices), id(indptr), free bytes) -> plan
 
+    @staticmethod
+    def _factor(B, spec):
+        return spla.splu(B, permc_spec=spec, diag_pivot_thresh=0.01,
+                         options=dict(SymmetricMode=True))
+
     def _plan(self, A, free):
+        """The gather map and ordering for (pattern, free), and the first factorisation."""
         probe = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
         red = probe[free][:, free].tocsc()
         red.sort_indices()
         first = sp.csc_matrix((A.data[red.data.astype(np.int64) - 1], red.indices, red.indptr),
                               shape=red.shape)
-        inv = np.argsort(spla.splu(first, permc_spec="MMD_AT_PLUS_A").perm_c)
+        lu = self._factor(first, "MMD_AT_PLUS_A")
+        inv = np.argsort(lu.perm_c)
         B = red[inv][:, inv].tocsc()
         B.sort_indices()
-        return (A.indices, A.indptr, np.array(free), B, B.data.astype(np.int64) - 1, inv)
+        return (A.indices, A.indptr, B, B.data.astype(np.int64) - 1, inv), lu
 
     def solve(self, A, free, b) -> np.ndarray:
         """Solve A[free][:, free] x = b."""
@@ -74,11 +81,11 @@ class PatternSolver:
         if key not in self._plans:
             if len(self._plans) >= self.size:
                 self._plans.clear()
-            self._plans[key] = self._plan(A, free)
-        _, _, _, B, gather, inv = self._plans[key]
+            self._plans[key], lu = self._plan(A, free)
+            return lu.solve(b)
+        _, _, B, gather, inv = self._plans[key]
         B.data = A.data[gather]
-        lu = spla.splu(B, permc_spec="NATURAL", diag_pivot_thresh=0.01,
-                       options=dict(SymmetricMode=True))
+        lu = self._factor(B, "NATURAL")
         x = np.empty_like(b)
         x[inv] = lu.solve(b[inv])
         return x
