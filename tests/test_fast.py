@@ -21,10 +21,6 @@ PRM = FoilParameters(beta=12.0, K=0.08, d=0.4, ds=0.2, slip=0.07, Dn=0.03, c=0.6
 TOL = 1e-12
 
 
-def _state(problem, rng):
-    """A smooth, non-trivial state: the model's own start plus a perturbation."""
-    u = problem.initial_guess(PRM) if hasattr(problem, "initial_guess") else None
-    return u
 
 
 def _relative(a, b):
@@ -120,3 +116,4 @@ def test_pattern_is_shared():
     A, B = p.jacobian(u, PRM), p.jacobian(2.0 * u, PRM)
     assert A.indices is B.indices and A.indptr is B.indptr
     assert A.has_canonical_format
+

@@ -17,4 +17,4 @@ from .api import MODELS, solve, solve_along, sweep
 __all__ = ["Case", "CaseError", "InputError", "ConvergenceError", "ValidityWarning",
            "load_case", "load_sweep", "Sweep", "Result", "SUMMARY_KEYS", "MODELS", "solve",
            "solve_along", "sweep"]
-__version__ = "0.1.0"
+__version__ = "0.2.0"

@@ -106,6 +106,25 @@ class BasisData:
             return np.einsum("sieq,sjeq->ije", test, trial, optimize=True)
         return np.einsum("ieq,jeq->ije", test, trial, optimize=True)
 
+    @staticmethod
+    def tests(arrays) -> np.ndarray:
+        """Test-function arrays (each (function, element, point)) stacked for
+        :meth:`contract`: (element, function, term x point), built once per mesh."""
+        st = np.stack(arrays)                                       # (s, i, e, q)
+        return np.ascontiguousarray(st.transpose(2, 1, 0, 3)).reshape(
+            st.shape[2], st.shape[1], -1)
+
+    @staticmethod
+    def contract(tests, trials) -> np.ndarray:
+        """sum_s sum_q tests_s[i, e, q] trials_s[j, e, q] per (i, j, element), with ``tests``
+        from :meth:`tests` and ``trials`` weighted (coefficient times dx): one batched
+        matrix product over the elements."""
+        nj, nel, nq = trials[0].shape
+        tr = np.empty((nel, len(trials), nq, nj))
+        for k, a in enumerate(trials):
+            tr[:, k] = a.transpose(1, 2, 0)
+        return np.matmul(tests, tr.reshape(nel, -1, nj)).transpose(1, 2, 0)
+
     def pairs(self, rows, cols, row_offset: int = 0, col_offset: int = 0):
         """Global (row, column) arrays of the local block (local rows, local cols), shaped
         like :meth:`bilinear`'s output."""
@@ -263,6 +282,8 @@ class FilmAssembler:
         self.Jwp = self.Jwp.tocsr()
         self.ww_membrane = w.bilinear(self.gw, self.gw, w.dx)
         self.ww_bending = w.bilinear(self.hw, self.hw, w.dx)
+        self.tests_pp = f.tests([self.gx, self.gz, f.phi])
+        self.tests_pw = f.tests([self.gx, self.gz])
 
     def _film(self, u, prm, newton=True):
         from .film2d import film_coefficients
@@ -298,12 +319,11 @@ class FilmAssembler:
         f, w = self.f, self.w
         _, _, c = self._film(u, prm, newton)
         dx, q, gx, gz = f.dx, f.phi, self.gx, self.gz
-        pp = f.bilinear(np.stack([gx, gz, q]),
-                        np.stack([gx * (c["jD"] * dx) + q * (c["jX"] * dx),
-                                  gz * (c["jD"] * dx) + q * (c["jZ"] * dx),
-                                  q * (c["jS"] * dx)]))
-        pw = f.bilinear(np.stack([gx, gz]),
-                        np.stack([self.M_loc * (c["hX"] * dx), self.M_loc * (c["hZ"] * dx)]))
+        jD, jS = c["jD"] * dx, c["jS"] * dx
+        jX, jZ = c["jX"] * dx, c["jZ"] * dx
+        pp = f.contract(self.tests_pp, [gx * jD + q * jX, gz * jD + q * jZ, q * jS])
+        pw = f.contract(self.tests_pw, [self.M_loc * (c["hX"] * dx),
+                                        self.M_loc * (c["hZ"] * dx)])
         _, _, wc = self._web(u, prm)
         ww = (self.ww_membrane + prm.Dn * self.ww_bending
               + w.bilinear(w.phi, w.phi, wc["k_c"] * w.dx))

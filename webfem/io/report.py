@@ -88,12 +88,22 @@ def _num(value) -> str:
     return str(value)
 
 
+def _numeric(text) -> bool:
+    try:
+        float(str(text))
+    except ValueError:
+        return False
+    return True
+
+
 def _table(head, rows) -> str:
+    """An HTML table; numbers in the value column are right-aligned and kept on one line,
+    text wraps."""
     out = ["<table>", "<tr>" + "".join(f"<th>{escape(h)}</th>" for h in head) + "</tr>"]
     for row in rows:
         out.append("<tr>" + "".join(
-            f'<td class="n">{escape(c)}</td>' if i == 1 else f"<td>{escape(c)}</td>"
-            for i, c in enumerate(row)) + "</tr>")
+            f'<td class="n">{escape(c)}</td>' if i == 1 and _numeric(c)
+            else f"<td>{escape(c)}</td>" for i, c in enumerate(row)) + "</tr>")
     out.append("</table>")
     return "\n".join(out)
 
@@ -176,7 +186,7 @@ def _computed(result, version: str) -> str:
             ("webfem", version, "", ""),
             ("Python", platform.python_version(), "", platform.platform(terse=True)),
             ("written", datetime.datetime.now().isoformat(timespec="seconds"), "", "")]
-    return _table(("", "value", "unit", ""), rows)
+    return _table(("", "value", "unit", "note"), rows)
 
 
 def report_html(result, *, title: str = "", pictures=(), version: str = "") -> str:
