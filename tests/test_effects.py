@@ -177,17 +177,21 @@ def test_impermeable_web_has_no_permeation_effect():
 
 def test_bending_from_the_modulus_is_the_explicit_value():
     """web.bending_stiffness absent: D = E_m t^3/12 = 4.46e9 * (70e-6)^3 / 12 = 1.2748e-4
-    N m (physics.md: 1.27e-4). The explicit value gives the same answer to 1e-12."""
+    N m (physics.md: 1.27e-4). The explicit value gives the same scaled problem, bit for bit,
+    and the same answer to round-off (two solves in one process may differ in the last
+    digits: the linear solver reuses the fill-reducing ordering of a pattern it has seen)."""
     D = 4.46e9 * 70e-6**3 / 12.0
     case = Case().updated({"roller.speed": 30.0})
     assert case.web.bending_stiffness is None
     assert case.bending_used == pytest.approx(D, rel=1e-14)
     assert D == pytest.approx(1.2748e-4, rel=1e-4)
+    explicit = case.updated({"web.bending_stiffness": D})
+    assert FoilParameters.from_case(case) == FoilParameters.from_case(explicit)
     a = fe1d.solve(case)
-    b = fe1d.solve(case.updated({"web.bending_stiffness": D}))
+    b = fe1d.solve(explicit)
     assert a["bending_stiffness_used"] == pytest.approx(D, rel=1e-14)
     for key in KEYS:
-        assert rel(a[key], b[key]) < 1e-12, (key, a[key], b[key])
+        assert rel(a[key], b[key]) < 1e-10, (key, a[key], b[key])
     membrane = fe1d.solve(case.updated({"web.bending_stiffness": 0.0}))
     assert "bending" in a["effects"] and "bending" not in membrane["effects"]
     assert membrane["bending_stiffness_used"] == 0.0
@@ -240,7 +244,9 @@ def test_load_friction_is_the_film_shear_where_contact_vanishes(model):
     """
     loads = model.solve(SMOOTH)
     cont = model.solve(SMOOTH.updated({"friction.variant": "continuous"}))
-    assert loads["h_center"] == cont["h_center"]   # friction is read off the same film
+    # friction is read off the same film (two solves: equal to round-off, the linear solver
+    # reuses the ordering of a pattern it has seen)
+    assert loads["h_center"] == pytest.approx(cont["h_center"], rel=1e-12)
     assert loads["contact_share"] < 1e-15
     g = loads.diagnostics
     p_bar = SMOOTH.p_bar

@@ -22,7 +22,9 @@ def test_effects_table_switches_each_effect_off():
                                               "isothermal-permeation", "load-friction"]
     direct = webfem.solve(case.updated(SWITCH_OFF["inertia"]), model="fe1d")
     row = table.rows[1]
-    assert row.h_min == direct["h_min"] and row.slip_margin == direct["slip_margin"]
+    # two solves of one case agree to round-off (the linear solver reuses orderings)
+    assert row.h_min == pytest.approx(direct["h_min"], rel=1e-12)
+    assert row.slip_margin == pytest.approx(direct["slip_margin"], rel=1e-9)
     assert row.d_h_min == pytest.approx(direct["h_min"] / table.rows[0].h_min - 1.0)
     # the moving web turns at the cost of rho t U^2: without it the film is thinner
     assert row.d_h_center < 0.0

@@ -15,9 +15,10 @@ C without rows at several roller speeds) is reported with no interval and a note
 Examples
 --------
 >>> from webfem import Case
+>>> paper = Case().updated({"model.physics": "paper"})    # rows of the paper's closed form
 >>> rows = [{"roller.speed": u, "mu": m} for u, m in zip([2.0, 8.0, 20.0, 30.0, 40.0],
 ...         [0.267, 0.2703, 0.1771, 0.0672, 0.0207])]
->>> fit = calibrate(rows, Case())
+>>> fit = calibrate(rows, paper)
 >>> round(fit.estimates["mu_cc"], 2), fit["estimates"] == fit.estimates
 (0.3, True)
 """

@@ -9,7 +9,9 @@ Examples
 >>> from webfem import Case
 >>> table = effects_table(Case().updated({"roller.speed": 40.0}), "closed-form")
 >>> [row.effect for row in table.rows]
-['all included', 'load-friction']
+['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction']
+>>> table.not_carried                  # the closed form cannot carry these
+('bending', 'slip', 'isothermal-permeation')
 """
 
 from __future__ import annotations

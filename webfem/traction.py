@@ -11,7 +11,7 @@ Examples
 >>> from webfem import Case
 >>> out = traction_loss_speed(Case(), 0.1)
 >>> round(out.speed, 1), out.model, out["speed"] == out.speed
-(26.3, 'closed-form', True)
+(27.7, 'closed-form', True)
 """
 
 from __future__ import annotations

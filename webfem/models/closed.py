@@ -20,7 +20,7 @@ import numpy as np
 
 from ..case import Case
 from ..physics import closed_form as cf
-from ..physics.contact import REGIMES, contact_gap, contact_pressure
+from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
 from ..physics.effects import CLOSED_FORM_CARRIES, idler_check, included, left_out
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
                                 wrap_average_linear_gap, wrap_average_loads)
@@ -94,7 +94,23 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
 
 def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
     """Wrap average of the load share min(p_c/p_bar, 1) that asperity contact carries on the
-    linear gap, the web resting at h_c where Eq. 21 lands it (Gauss-Legendre, ``n``)."""
+    linear gap, the web resting at h_c where Eq. 21 lands it.
+
+    Exponential heights: p_c(h)/p_bar = exp(-(h - h_c)/sigma) above h_c, integrated exactly
+    over the linear gap; Gaussian heights: Gauss-Legendre with ``n`` points.
+    """
+    if distribution == "exponential":
+        h_in, h_out, h_c, sigma = np.broadcast_arrays(*(np.asarray(v, float) for v in
+                                                        (h_in, h_out, h_c, sigma)))
+        lo, hi = np.minimum(h_in, h_out), np.maximum(h_in, h_out)
+        span = hi - lo
+        edge = np.maximum(h_c, 0.0)
+        a = np.clip(edge, lo, hi)                 # the part of the gap below the edge: 1
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            tail = sigma * (np.exp(-(a - h_c) / sigma) - np.exp(-(hi - h_c) / sigma))
+            share = np.where(span > 0.0, ((a - lo) + tail) / np.where(span > 0.0, span, 1.0),
+                             np.minimum(np.exp(-(np.maximum(lo, edge) - h_c) / sigma), 1.0))
+        return share
     g, gw = np.polynomial.legendre.leggauss(n)
     s = 0.5 * (g + 1.0)
     h_in, h_out, h_c, p_bar = (np.asarray(v, float)[..., None] for v in
@@ -165,8 +181,11 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
     x = np.linspace(-R * B / 2, R * B / 2, options.n_points)
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
     # with friction from the loads the web rests on its asperities where Eq. 21 lands it
-    h_friction = np.maximum(h, summary.h_c) if case.friction_variant == "loads" else h
-    fields = Fields(x=x, h=h, **friction_for(case, h_friction))
+    loads = case.friction_variant == "loads"
+    local = friction_for(case, np.maximum(h, summary.h_c) if loads else h)
+    if loads:   # where Eq. 21 lands the web it rests on its asperities: boundary
+        local["regime"] = regime_code(h, summary.h_c, case.sigma)
+    fields = Fields(x=x, h=h, **local)
     return Result(case, summary, fields,
                   Diagnostics(method="Eq. 21 + Eqs. 10-13, 28-31, exact average",
                               options=options))

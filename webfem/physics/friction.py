@@ -314,13 +314,15 @@ def wrap_average_loads(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
         a, b = cuts[..., j:j + 1], cuts[..., j + 1:j + 2]
         s = 0.5 * (a + b) + 0.5 * (b - a) * g
         wts = 0.5 * (b - a) * gw
-        h = np.maximum(h_in + span * s, np.maximum(h_c, 0.0))
+        h_line = h_in + span * s
+        h = np.maximum(h_line, np.maximum(h_c, 0.0))
         from .contact import contact_pressure
         loc = load_friction(h, contact_pressure(h, E_b, sigma, t, distribution), p_bar=p_bar,
                             U_s=U_s, eta=eta, mu_cc=mu_cc, C=C, h_edge=h_c, sigma=sigma,
                             slip_length=slip_length)
         total += np.sum(loc["mu"] * wts, axis=-1)
+        regime = regime_code(h_line, h_c, sigma)   # landed by Eq. 21: boundary
         for k in range(3):
-            shares[k] += np.sum((loc["regime"] == k) * wts, axis=-1)
+            shares[k] += np.sum((regime == k) * wts, axis=-1)
     return {"mu": total, "share_boundary": shares[0], "share_mixed": shares[1],
             "share_fluid": shares[2]}
