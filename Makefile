@@ -54,11 +54,12 @@ figures: $(STAMP)
 	  $(VENV)/bin/webfem sweep cases/$$f.toml --model $(FIG_MODEL) --num 24 --log --workers 2 \
 	    --out docs/figures --quiet || exit 1; done
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
-	  --chart docs/figures --points 4 --quiet
-	$(VENV)/bin/webfem study variants cases/base.toml --out docs/figures --model $(FIG_MODEL)
+	  --set model.physics=paper --chart docs/figures --points 4 --quiet
+	$(VENV)/bin/webfem study variants cases/base.toml --set model.physics=paper \
+	  --out docs/figures --model $(FIG_MODEL)
 
 # the three studies and docs/studies.md from their numbers, then Eq. 21 over lambda
-# (docs/lambda_table.md) (about 20 minutes on 2 cores)
+# (docs/lambda_table.md), all with the paper's physics (about 20 minutes on 2 cores)
 studies: $(STAMP)
-	$(VENV)/bin/webfem study report cases/base.toml --out docs
-	$(VENV)/bin/webfem study lambda-table cases/base.toml --out docs
+	$(VENV)/bin/webfem study report cases/base.toml --set model.physics=paper --out docs
+	$(VENV)/bin/webfem study lambda-table cases/base.toml --set model.physics=paper --out docs

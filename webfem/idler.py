@@ -9,7 +9,7 @@ Examples
 >>> from webfem import load_case
 >>> curve = margin_curve(load_case("cases/idler.toml"), [5.0, 15.0], "closed-form")
 >>> [round(m, 2) for m in curve.slip_margin]
-[6.37, 0.02]
+[6.39, 0.02]
 """
 
 from __future__ import annotations

@@ -19,19 +19,19 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import numpy as np
-from numpy.polynomial.legendre import leggauss
 
 from ..case import Case
-from ..errors import ConvergenceError, InputError, NoAdmissibleSolution
+from ..errors import ConvergenceError, InputError
 from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES
 from ..physics.effects import idler_check, included
 from ..physics.friction import delta_T_from_mu, friction_for
-from ..physics.validity import (contact_overload, slip_warning, thin_film_check,
-                                 wrap_length_check)
+from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
 from ..result import Diagnostics, Fields, Result, Summary
+from .admissible import _no_admissible_solution, admissibility
+from .refine import adapted_nodes, minimum, wrap_samples
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
            "admissibility"]
@@ -198,113 +198,6 @@ def _user_mesh_check(disc, case: Case, problem, u, prm, options) -> list[str]:
     return [text + f"; halving every cell changes h_center by {100 * dc:.2g} % and h_min by "
             f"{100 * dm:.2g} % (an estimate of this mesh's error): refine the mesh or use "
             "webfem's graded one"]
-
-
-def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
-    """Why a converged state is not an answer, or None when it is admissible: the gap must
-    be positive everywhere in the solved domain (with contact the web rests on its
-    asperities, never through them) and the absolute film pressure positive."""
-    X = problem.X
-    H = problem.gap(u, prm, X)
-    if not np.all(np.isfinite(H)):
-        return "the gap is not finite"
-    Hmin, Xmin = minimum(problem, u, prm)
-    if Hmin <= 0.0:
-        return (f"the gap reaches {Hmin * case.h_scale:.3g} m <= 0 at x = "
-                f"{Xmin * case.x_scale:.3g} m")
-    p_abs = case.air.ambient_pressure + problem.pressure(u, X) * case.p_bar
-    if np.min(p_abs) <= 0.0:
-        return f"the absolute film pressure reaches {np.min(p_abs):.3g} Pa <= 0"
-    return None
-
-
-def _no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=None,
-                            u=None) -> None:
-    """An input error when the case admits no solution with a positive gap: the web lands
-    and the contact law cannot carry T/R at any h >= 0, or (``problem`` and ``u`` given: a
-    mesh-converged state) the web is pressed through its asperities somewhere because the
-    load there exceeds what contact carries at h = 0."""
-    overload = contact_overload(case) if prm.contact else None
-    if overload:
-        raise NoAdmissibleSolution(f"no admissible solution: the web lands ({why}) and "
-                                   f"{overload}")
-    if problem is None or not prm.contact:
-        return
-    Hmin, Xmin = minimum(problem, u, prm)
-    if Hmin > 0.0:
-        return
-    w = case.web
-    p0 = prm.c * case.p_bar if prm.law == 0 else float(
-        forms.contact_law(np.array([0.0]), prm.as_form_args())[0][0] * case.p_bar)
-    suction = float(np.min(problem.pressure(u, problem.X))) * case.p_bar
-    cause = (f"the film's suction ({-suction:.3g} Pa below ambient where the web lifts off) "
-             "pulls it" if suction < -case.p_bar else "the web is pressed")
-    bend = (f" with bending stiffness D = {case.bending_used:.3g} N m"
-            if case.bending_used > 0 else "")
-    raise NoAdmissibleSolution(
-        f"no admissible solution: {cause} through its asperities at x = "
-        f"{Xmin * case.x_scale:.4g} m{bend}: the contact pressure needed exceeds what the "
-        f"{case.friction.distribution} contact law carries at h = 0 ({p0:.4g} Pa, E_b sigma/"
-        f"(2t) for the exponential law); a stiffer or rougher web (web.modulus_thickness = "
-        f"{w.modulus_thickness:g} Pa, web.roughness = {w.roughness:g} m) or a lower "
-        f"web.tension keeps it on its asperities")
-
-
-def minimum(problem, u, prm) -> tuple[float, float]:
-    """Smallest scaled gap in the domain and where: nodal search refined inside the
-    adjacent cells."""
-    Hn = problem.gap(u, prm, problem.X)
-    i = int(np.argmin(Hn))
-    lo, hi = problem.X[max(i - 1, 0)], problem.X[min(i + 1, len(problem.X) - 1)]
-    Xs = np.linspace(lo, hi, 81)
-    Hs = problem.gap(u, prm, Xs)
-    j = int(np.argmin(Hs))
-    return float(Hs[j]), float(Xs[j])
-
-
-def wrap_samples(X: np.ndarray, beta: float, n: int = 8):
-    """Gauss points and weights over the wrap cells (nodes sit on the wrap edges)."""
-    e = 0.5 * beta
-    inner = X[(X >= -e - 1e-12) & (X <= e + 1e-12)]
-    g, gw = leggauss(n)
-    a, b = inner[:-1, None], inner[1:, None]
-    pts = 0.5 * (a + b) + 0.5 * (b - a) * g[None, :]
-    wts = 0.5 * (b - a) * gw[None, :]
-    return pts.ravel(), wts.ravel()
-
-
-def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
-    """Bisect cells longer than ``ratio`` times the local film or contact length, or None.
-
-    Where the film is thin the sink and the contact springs make boundary layers far
-    shorter than the entry-zone scale: the film's reaction length sqrt(H^3 / K), the
-    contact length sqrt(S / (c exp(-H/S))) of the web on its asperities and, for a beam, the
-    length (Dn / k_c)^(1/4) over which a web bends into its asperities (a beam on an elastic
-    foundation of stiffness k_c). No refinement past ``max_cells`` cells.
-    """
-    X = problem.X
-    H_true = problem.gap(u, prm, X)
-    # films thinner than the roughness carry nothing the asperities do not: resolve to S
-    H = np.maximum(H_true, max(prm.floor, prm.S if prm.contact else 0.0))
-    Hc = np.minimum(H[1:], H[:-1])
-    scale = np.full(Hc.shape, np.inf)
-    if prm.K > 0:
-        scale = np.minimum(scale, np.sqrt(Hc**3 / prm.K))
-    if prm.contact:
-        kc = forms.contact_law(Hc, prm.as_form_args())[1]
-        with np.errstate(all="ignore"):
-            scale = np.minimum(scale, 1.0 / np.sqrt(kc))
-            if prm.Dn > 0:
-                # where the web is pressed into its asperities the foundation is as stiff
-                # as the contact law at the true gap, not at the film's floor
-                k_true = forms.contact_law(np.minimum(H_true[1:], H_true[:-1]),
-                                           prm.as_form_args())[1]
-                scale = np.minimum(scale, (prm.Dn / np.maximum(kc, k_true)) ** 0.25)
-    dx = np.diff(X)
-    mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
-    if not mark.any() or X.size + mark.sum() > max_cells:
-        return None
-    return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
 
 
 def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) -> Result:

@@ -1,0 +1,277 @@
+"""The 1-D discrete problem: the infinitely wide foil bearing on one mesh.
+
+Film pressure (P2 or P1 Lagrange) and web deflection (cubic Hermite) in one composite
+scikit-fem basis, built once per mesh; the residual and exact Jacobian of
+:mod:`webfem.fem.forms` (assembled by :mod:`webfem.fem.fast`, checked against the forms);
+Newton with continuation from the Eshel-Elrod problem, and the two Picard schemes. The model
+around it (start, refinement, summary) is :mod:`webfem.models.fe1d` on the shared driver.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2
+
+from ..errors import InputError
+from ..fem import fast, forms
+from ..fem.mesh import line_mesh
+from ..fem.newton import newton
+from ..fem.picard import frozen_coefficient_picard, picard
+from ..fem.scaling import FoilParameters
+from .options import FE1DOptions
+
+__all__ = ["FoilBearing1D"]
+
+
+class FoilBearing1D:
+    """The discrete coupled problem on one mesh: basis, DOF sets, residual and Jacobian.
+
+    Built once per mesh; parameters may change between calls (continuation).
+
+    Parameters
+    ----------
+    X : node positions (scaled), from :func:`webfem.fem.mesh.graded_nodes`.
+    order : 1 or 2, the Lagrange order of the film pressure.
+    """
+
+    def __init__(self, X: np.ndarray, order: int = 2):
+        if order not in (1, 2):
+            raise InputError(f"order = {order!r} is not valid: must be 1 or 2")
+        self.X = np.asarray(X, float)
+        self.mesh = line_mesh(self.X)
+        pressure = ElementLineP2() if order == 2 else ElementLineP1()
+        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
+        element = pressure * ElementLineHermite()
+        self.basis = Basis(self.mesh, element, intorder=6)
+        # nodal (Gauss-Lobatto) quadrature lumps the sink for P1 (no pressure wiggles where
+        # the film is thin); P2 keeps Gauss and relies on the adaptive refinement instead
+        self.sink_basis = (Basis(self.mesh, element,
+                                 quadrature=(np.array([[0.0, 1.0]]), np.array([0.5, 0.5])))
+                           if order == 1 else self.basis)
+        self.order = order
+        # split bases once: building them is most of the cost of interpolating a state
+        self._split = {id(b): b.split_bases() for b in (self.basis, self.sink_basis)}
+        self._x = {id(b): np.asarray(b.global_coordinates()[0])
+                   for b in (self.basis, self.sink_basis)}
+        self.iP, self.iW_all = self.basis.split_indices()
+        self.iW = self.basis.nodal_dofs[1]        # web deflection at the nodes
+        self.iWx = self.basis.nodal_dofs[2]       # its slope
+        fixed = np.concatenate([self.basis.get_dofs({"left", "right"}).all("u^1"),
+                                self.basis.get_dofs({"left", "right"}).all("u^2")])
+        self.fixed = np.unique(fixed)
+        self.free = np.setdiff1d(np.arange(self.basis.N), self.fixed)
+        self.free_P = np.intersect1d(self.iP, self.free)
+        self.free_W = np.intersect1d(self.iW_all, self.free)
+        self.pbasis, self.wbasis = self.basis.split_bases()
+        self._assembler = None
+
+    @property
+    def n_dofs(self) -> int:
+        return self.basis.N
+
+    def _state(self, basis, u, prm: FoilParameters, sink: bool = False,
+               newton: bool | None = None) -> dict:
+        """Form arguments at ``basis``'s quadrature points for the state ``u``: for the
+        residual (``newton=None``), or for the Jacobian (exact if ``newton`` else Picard's)."""
+        bp, bw = self._split[id(basis)]
+        P = bp.interpolate(u[self.iP])
+        if sink:
+            return {"P": np.asarray(P), "K": prm.K, "d": prm.ds,
+                    "newton": 1.0 if newton or newton is None else 0.0}
+        W = bw.interpolate(u[self.iW_all])
+        coef = forms.coefficients(self._x[id(basis)], np.asarray(P), P.grad[0], np.asarray(W),
+                                  prm.as_form_args(), sink=self.order == 2)
+        if newton is None:
+            return {"W": W, "Dn": prm.Dn, **coef}
+        return {"Dn": prm.Dn, **forms.jacobian_coefficients(coef, newton)}
+
+    @property
+    def assembler(self) -> fast.LineAssembler:
+        """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
+        if self._assembler is None:
+            self._assembler = fast.LineAssembler(self.basis, self.sink_basis
+                                                 if self.order == 1 else None)
+        return self._assembler
+
+    def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
+        """The coupled residual; ``reference=True`` (or ``fast.USE_FORMS``) assembles it with
+        the decorated forms, otherwise :mod:`webfem.fem.fast` does."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.residual(u, prm, sink=self.order == 2)
+        F = forms.residual.assemble(self.basis, **self._state(self.basis, u, prm))
+        if prm.K and self.order == 1:
+            sb = self.sink_basis
+            F += forms.sink_residual.assemble(sb, **self._state(sb, u, prm, sink=True))
+        return F
+
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True, reference: bool = False):
+        """Exact Jacobian, or (``newton=False``) the Picard operator with frozen film
+        coefficients; ``reference`` as in :meth:`residual`."""
+        if not (reference or fast.USE_FORMS):
+            return self.assembler.jacobian(u, prm, bool(newton), sink=self.order == 2)
+        J = forms.jacobian.assemble(self.basis, **self._state(self.basis, u, prm, False,
+                                                              bool(newton)))
+        if prm.K and self.order == 1:
+            sb = self.sink_basis
+            J += forms.sink_jacobian.assemble(sb, **self._state(sb, u, prm, True, bool(newton)))
+        return J
+
+    def initial_guess(self, prm: FoilParameters, H0: float = 0.643) -> np.ndarray:
+        """A large-gap start: the Eshel-Elrod film H0 at the inlet edge, falling along the wrap
+        with the permeation slope -K (where P = 1) down to the contact gap, and P = 1 in the
+        wrap; W tapers linearly to 0 at the ends. Without the slope, a permeable web's
+        consistent film pressure is about 0 and the first Newton step collapses the web."""
+        u = np.zeros(self.basis.N)
+        x = self.basis.doflocs[0]
+        e = 0.5 * prm.beta
+        u[self.iP] = forms.in_wrap(x[self.iP], prm.beta)
+        H_land = max(prm.H_c, 0.1) if prm.contact else 0.1
+        xn = x[self.iW]
+        X0, X1 = self.X[0], self.X[-1]
+
+        def wrap_gap(X):
+            return np.maximum(H0 - prm.K * (np.clip(X, -e, e) + e), min(H_land, H0))
+
+        edge_in, edge_out = wrap_gap(-e), wrap_gap(e)
+        W = np.where(xn < -e, edge_in * (xn - X0) / (-e - X0),
+                     np.where(xn > e, edge_out * (X1 - xn) / (X1 - e), wrap_gap(xn)))
+        dW = np.where(xn < -e, edge_in / (-e - X0), np.where(xn > e, -edge_out / (X1 - e),
+                      np.where(wrap_gap(xn) > H_land, -prm.K, 0.0)))
+        u[self.iW] = W
+        u[self.iWx] = dW
+        u[self.fixed] = 0.0
+        return u
+
+    def gap(self, u, prm: FoilParameters, X: np.ndarray) -> np.ndarray:
+        """Scaled gap H at points X (exact Hermite evaluation)."""
+        X = np.asarray(X, float)
+        Wv = self.wbasis.probes(X[None, :]) @ u[self.iW_all]
+        return Wv + forms.departure(X, prm.beta)
+
+    def pressure(self, u, X: np.ndarray) -> np.ndarray:
+        """Scaled film pressure P at points X."""
+        return self.pbasis.probes(np.asarray(X, float)[None, :]) @ u[self.iP]
+
+    # -- solvers ------------------------------------------------------------------------
+    def _newton(self, u0, prm, tol, max_iter, rows=None):
+        return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
+                      self.free if rows is None else rows, tol=tol, max_iter=max_iter)
+
+    def consistent_pressure(self, u, prm, tol=1e-8):
+        """Film pressure for the web as it is (a film-only solve): without it a cold
+        start's first coupled Newton step is wild and the line search fails."""
+        out = self._newton(u, prm, tol, 10, rows=self.free_P)
+        return out.u if out.converged else u
+
+    def solve_newton(self, u0, prm, options: FE1DOptions | None = None):
+        """Newton on the coupled system; on failure, continuation from the Eshel-Elrod
+        problem (K, d and Dn scaled by s from 0 to 1, adaptive steps).
+
+        Returns ``(u, info)``; ``info`` has converged, iterations (all Newton steps, including
+        the continuation's), residual, history, reason and continuation steps.
+        """
+        options = options or FE1DOptions()
+        tol, max_iter, continuation = options.tol, options.max_iter, options.continuation
+        # a direct attempt; a start that needs more than ~25 damped steps is better served by
+        # the continuation below
+        first_try = min(max_iter, 25) if continuation else max_iter
+        out = self._newton(self.consistent_pressure(u0, prm), prm, tol, first_try)
+        info = dict(iterations=out.iterations, history=list(out.history), steps=[1.0])
+        if out.converged or not continuation:
+            info.update(converged=out.converged, residual=out.residual, reason=out.reason)
+            return out.u, info
+        # continuation from the Eshel-Elrod problem: permeation K, compressibility d and
+        # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold)
+        target = prm
+        u = self.initial_guess(target.homotopy(0.0))
+        s, ds, steps = 0.0, 0.25, []
+        first = True
+        while True:
+            p = target.homotopy(s)
+            out = self._newton(self.consistent_pressure(u, p), p, tol, max_iter)
+            info["iterations"] += out.iterations
+            info["history"] += list(out.history)
+            if out.converged:
+                u = out.u
+                steps.append(s)
+                if s >= 1.0:
+                    info.update(converged=True, residual=out.residual, reason=out.reason,
+                                steps=steps)
+                    return u, info
+                ds = min(2.0 * ds, 1.0) if not first else ds
+                first = False
+                s_prev = s
+                s = min(1.0, s + ds)
+            else:
+                if first:
+                    info.update(converged=False, residual=out.residual,
+                                reason="continuation: Eshel-Elrod start failed: " + out.reason,
+                                steps=steps)
+                    return out.u, info
+                ds *= 0.25
+                if ds < 1e-4:
+                    info.update(converged=False, residual=out.residual,
+                                reason=f"continuation stalled at s = {s_prev:.4g}",
+                                steps=steps)
+                    return u, info
+                s = min(1.0, s_prev + ds)
+
+    def solve_picard(self, u0, prm, options: FE1DOptions | None = None):
+        """Picard iteration on the coupled system: film and web solved together each sweep
+        with the film's nonlinear coefficients H^3 and 1 + d P frozen at the last iterate,
+        under-relaxed: Anderson acceleration of depth ``anderson`` (default 10) and, if that
+        fails, Aitken's dynamic factor (``aitken``) or the fixed ``omega``. With ``backtrack``
+        (default 1.5) a step that raises the residual more than that factor is undone and
+        omega halved; ``anderson=0, aitken=False, backtrack=None`` is the plain fixed-factor
+        iteration.
+
+        Stops when the coupled residual ||F||_2 <= ``tol``, the same test as Newton, so the
+        two compare at equal tolerance.
+        """
+        options = options or FE1DOptions()
+        o = options
+        return frozen_coefficient_picard(self, u0, prm, o.tol, o.omega, o.aitken,
+                                         o.picard_max_iter, o.backtrack or None, o.anderson)
+
+    def solve_picard_staggered(self, u0, prm, options: FE1DOptions | None = None):
+        """Staggered Picard: film pressure from the gap, web from the pressure, relaxed on the
+        web. Kept to show where it fails: for a long wrap the web's response to a pressure
+        error grows like the cube of the wavelength, so the scalar-relaxed iteration
+        diverges or stalls on the paper's cases (see the tests and the issue notes).
+
+        The fixed-point residual is the change of the web DOFs, ``||G(W) - W||_inf`` in scaled
+        units; ``info['residual']`` is the coupled residual norm at the end (as in Newton).
+        """
+        options = options or FE1DOptions()
+        tol, omega, aitken = options.tol, options.omega, options.aitken
+        max_iter = options.picard_max_iter
+        iP, iW = self.free_P, self.free_W
+        u = np.array(u0, float, copy=True)
+        counts = {"film": 0, "web": 0}
+
+        def sub_newton(v, rows):
+            """Newton on one block (rows) with the other block frozen."""
+            return self._newton(v, prm, tol * 1e-2, 30, rows=rows)
+
+        def G(w_dofs):
+            v = u.copy()
+            v[iW] = w_dofs
+            film = sub_newton(v, iP)
+            counts["film"] += film.iterations
+            web = sub_newton(film.u, iW)
+            counts["web"] += web.iterations
+            if not (film.converged and web.converged):
+                raise RuntimeError("a block solve failed: " + (film.reason if not film.converged
+                                                                else web.reason))
+            u[iP] = web.u[iP]   # keep the latest pressure for the next sweep
+            return web.u[iW]
+
+        out = picard(G, u[iW], omega=omega, aitken=aitken, tol=tol, max_iter=max_iter)
+        u[iW] = out.x
+        # pressure consistent with the final web
+        film = sub_newton(u, iP)
+        u = film.u
+        res = float(np.linalg.norm(self.residual(u, prm)[self.free]))
+        return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
+                       history=out.history, reason=out.reason, omegas=out.omegas,
+                       block_iterations=counts)
