@@ -188,17 +188,20 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
     return _save(fig, path)
 
 
-def _save(fig, path) -> Path:
-    """Save as PNG under a hidden temporary name, then rename: never a half-written chart;
-    created by os.open so the user's umask sets the mode (0644 by default)."""
+def save_figure(fig, path, dpi: int = 110) -> Path:
+    """Save ``fig`` as PNG under a hidden temporary name, then rename (never a half-written
+    chart; the user's umask sets the mode) and close it; returns the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     try:
         with replacing(path) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
+            fig.savefig(tmp, dpi=dpi, format="png")
     finally:
         plt.close(fig)
     return path
+
+
+_save = save_figure
 
 
 def _pm(value, half) -> str:

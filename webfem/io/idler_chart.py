@@ -10,7 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..files import replacing  # noqa: E402
+from .charts import save_figure  # noqa: E402
 
 __all__ = ["idler_chart"]
 
@@ -46,11 +46,4 @@ def idler_chart(curve, path, title: str = "") -> Path:
     b.grid(True, which="both", alpha=0.3)
     if title:
         fig.suptitle(title, fontsize=10)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        with replacing(path) as tmp:
-            fig.savefig(tmp, dpi=110, format="png")
-    finally:
-        plt.close(fig)
-    return path
+    return save_figure(fig, path)

@@ -132,7 +132,6 @@ def film_figure(result, path, title: str | None = None) -> Path:
     if two_d:
         ax = axes[0]
         pts, tri, p = _full_width(result.film)
-        keep = np.abs(pts[:, 0]) <= reach * 1.02
         # the suction peak past the outlet edge is several times the wrap pressure T/R:
         # cap the colours at 1.5 T/R so the film in the wrap keeps its shades
         scale = 1.5 * (s.T_eff or case.web.tension) / case.roller.radius

@@ -12,21 +12,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 
-from ..files import replacing  # noqa: E402
+from .charts import save_figure  # noqa: E402
 
 __all__ = ["convergence_chart", "pareto_chart", "stability_chart", "lambda_table_chart",
            "variants_chart"]
 
 
-def _save(fig, path, dpi: int = 110) -> Path:
-    """Save as PNG whole or not at all (temporary file, umask mode, rename)."""
-    path = Path(path)
-    try:
-        with replacing(path) as tmp:
-            fig.savefig(tmp, dpi=dpi, format="png")
-    finally:
-        plt.close(fig)
-    return path
+_save = save_figure
 
 
 def _sequence(study, model, order):
