@@ -59,13 +59,16 @@ class FoilBearing2D:
     """
 
     def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2,
-                 grooves: GroovePattern | None = None, web_edges: bool = True):
+                 grooves: GroovePattern | None = None, web_edges: bool = True,
+                 ambient_grooves: bool = False):
         if order not in (1, 2):
             raise InputError(f"order = {order!r} is not valid: must be 1 or 2")
         self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
         #: the roller's grooves (None: smooth) and whether Z ends at web edges (False: the
         #: periodic cell of a grooved roller, symmetric on both sides)
         self.grooves, self.web_edges = grooves, bool(web_edges)
+        #: True: P = 0 in the grooves and on their edges (the deep-groove limit)
+        self.ambient_grooves = bool(ambient_grooves) and grooves is not None
         self.width = float(self.Z[-1] - self.Z[0])
         self.order = order
         self.line = line_mesh(self.X)
@@ -83,6 +86,11 @@ class FoilBearing2D:
         #: groove depth Delta(Z) at the film's quadrature points (0: land or smooth)
         self.groove_q = (grooves.depth_at(zq) if grooves is not None else np.zeros_like(zq))
         fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
+        if self.ambient_grooves:
+            zd = self.fbasis.doflocs[1]
+            off = np.abs(zd - grooves.pitch * np.round(zd / grooves.pitch))
+            fixed_p = np.concatenate([fixed_p, np.flatnonzero(
+                off >= 0.5 * grooves.land * (1.0 - 1e-9))])
         self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
         self.free = np.setdiff1d(np.arange(self.n_dofs), self.fixed)
         self._xw = np.asarray(self.wbasis.global_coordinates()[0])
@@ -234,7 +242,16 @@ class FoilBearing2D:
         from (``line_start``), continuation in the web width (:func:`_width_continuation`)."""
         options = options or FE2DOptions()
         u, info = self._plain_newton(u0, prm, options.tol, options.max_iter)
-        if not info["converged"] and self.grooves is not None:
+        if not info["converged"] and self.ambient_grooves:
+            # the solved groove pressure is close to ambient in deep grooves: start there
+            solved = FoilBearing2D(self.X, self.Z, self.order, self.grooves, self.web_edges)
+            v, first = solved.solve_newton(u0, prm, options)
+            if first["converged"]:
+                v[self.fixed] = 0.0
+                u, info = self._plain_newton(v, prm, options.tol, options.max_iter)
+                info["iterations"] += first["iterations"]
+                info["reason"] += " (from the solved groove pressure)"
+        elif not info["converged"] and self.grooves is not None:
             u, info = _depth_continuation(self, u0, prm, options, info)
         elif not info["converged"] and self.line_start is not None:
             p1, u1 = self.line_start
@@ -299,7 +316,8 @@ def _depth_continuation(problem: FoilBearing2D, u0, prm, opts, failed: dict):
     f_prev, f, u = None, 1.0 / 64.0, u0
     while True:
         step = FoilBearing2D(problem.X, problem.Z, problem.order,
-                             GroovePattern(g.pitch, g.width, g.depth * f), problem.web_edges)
+                             GroovePattern(g.pitch, g.width, g.depth * f), problem.web_edges,
+                             problem.ambient_grooves)
         v, info = step._plain_newton(u, prm, opts.tol, opts.max_iter)
         its += info["iterations"]
         hist += info["history"]
@@ -384,7 +402,8 @@ class _Film:
 
     def start(self, case: Case, prm: FoilParameters, options: FE2DOptions, initial) -> Start:
         line_start = initial.state("line_result") if initial is not None else None
-        one = fe1d.solve_case(case, FE2DOptions.line_options(options), initial=line_start,
+        smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
+        one = fe1d.solve_case(smooth, FE2DOptions.line_options(options), initial=line_start,
                               raise_on_failure=False)
         p1, u1 = one.state("problem"), one.state("state")
         pattern, domain = groove_domain(case, options)
@@ -399,14 +418,16 @@ class _Film:
             if not options.symmetry:
                 Z = np.concatenate([-Z[:0:-1], Z])
         problem = FoilBearing2D(p1.X, Z, order=options.order, grooves=pattern,
-                                web_edges=domain != "cell")
+                                web_edges=domain != "cell",
+                                ambient_grooves=options.groove_pressure == "ambient")
         problem.line_start = (p1, u1)
         return Start(problem, problem.start_from_line(p1, u1, prm),
                      iterations=one["iterations"], solver={"line_result": one})
 
     def refined(self, problem, u, prm, X, options):
         finer = FoilBearing2D(X, problem.Z, order=options.order, grooves=problem.grooves,
-                              web_edges=problem.web_edges)
+                              web_edges=problem.web_edges,
+                              ambient_grooves=problem.ambient_grooves)
         return finer, _transfer2d(problem, u, prm, finer)
 
     def mesh_text(self, problem, options) -> str:

@@ -310,6 +310,9 @@ class FE2DOptions(FE1DOptions):
                           "centre (a wide web), the full width with its edge lands, or auto "
                           "(the cell when the web spans >= 10 pitches)", "choice",
                           choices=("auto", "cell", "full"))
+    groove_pressure: str = option("solved", "grooved roller: the groove pressure solved with "
+                                  "the film, or held at ambient (the deep-groove limit, for "
+                                  "checks)", "choice", choices=("solved", "ambient"))
 
     @classmethod
     def line_options(cls, options: "FE2DOptions") -> FE1DOptions:
