@@ -18,9 +18,8 @@ from webfem.errors import InputError
 from webfem.fem.grooves import GroovePattern, groove_nodes
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
-from webfem.fem.transfer import width_nodes
 from webfem.models import auto, closed, fe1d, fe2d
-from webfem.models.driver import minimum
+from webfem.models.options import FE2DOptions
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
 
@@ -171,8 +170,11 @@ def test_auto_domain_and_summary():
     assert "periodic cell" in r["groove_domain"] and "27.6" in r["groove_domain"]
     assert r["land_fraction"] == pytest.approx(c.land_fraction)
     assert 0.0 < r["contact_share"] <= r["contact_share_lands"] <= 1.0
-    narrow = c.updated({"web.width": 5e-3})
-    assert "full width" in fe2d.solve(narrow)["groove_domain"]
+    opts = FE2DOptions()
+    assert fe2d.groove_domain(c.updated({"web.width": 12.6e-3}), opts)[1] == "full"
+    assert fe2d.groove_domain(c.updated({"web.width": 12.8e-3}), opts)[1] == "cell"
+    assert fe2d.groove_domain(c, opts.replace(grooves="full"))[1] == "full"
+    assert fe2d.groove_domain(Case(), opts)[0] is None
 
 
 @pytest.mark.slow

@@ -204,6 +204,8 @@ def solve(case: Case, options: ClosedFormOptions | None = None, **values) -> Res
 def solve_many(cases) -> list[Result]:
     """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
     cases = list(cases)
+    for c in cases:
+        grooves_refused(c, "the closed form")
     out: list[Result | None] = [None] * len(cases)
     kinds = {(c.friction_variant, c.friction.distribution) for c in cases}
     for variant, distribution in kinds:
