@@ -195,3 +195,25 @@ def test_base_grooved_case_answers_in_json(capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["converged"] and out["land_fraction"] == pytest.approx(1 - 0.25 / 1.27)
     assert out["h_center"] < 5e-6
+
+
+# -- sizing ---------------------------------------------------------------------------------
+def test_grooves_sizing_command(capsys):
+    """One design at 40 m/s (the smooth roller's mu there is below 0.02): grooved, it keeps
+    mu above 0.2; the JSON names it the best."""
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--speed", "40",
+                 "--pitches", "1.27e-3", "--lands", "0.9", "--json", "--quiet"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    (d,) = out["designs"]
+    assert d["converged"] and d["feasible"] and d["mu"] > 0.2
+    assert d["land_fraction"] == pytest.approx(0.9)
+    assert out["best"]["40"]["pitch"] == pytest.approx(1.27e-3)
+
+
+def test_grooves_sizing_refuses_bad_lists(capsys):
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--lands", "1.5"]) == 2
+    assert "land fraction = 1.5" in capsys.readouterr().err
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "a,b"]) == 2
+    assert "comma-separated" in capsys.readouterr().err
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "0"]) == 2
+    assert "groove pitch = 0.0" in capsys.readouterr().err
