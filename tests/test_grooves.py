@@ -23,6 +23,8 @@ from webfem.models.options import FE2DOptions
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
 
+from orders import GAP_GROOVED
+
 GROOVED = {"roller.groove_pitch": 1.27e-3, "roller.groove_width": 0.25e-3,
            "roller.groove_depth": 0.25e-3}
 EE = FoilParameters(beta=30.0, K=0.0, d=0.0, Dn=0.0, c=0.0, S=1.0, contact=0.0, floor=1e-3)
@@ -120,6 +122,23 @@ def test_zero_width_case_is_the_smooth_case():
     a, b = fe2d.solve(c), fe2d.solve(g)
     assert b["h_center"] == pytest.approx(a["h_center"], rel=1e-9)
     assert b["land_fraction"] == 1.0 and b["contact_share_lands"] is None
+
+
+@pytest.mark.parametrize("order", [1, pytest.param(2, marks=pytest.mark.slow)])
+def test_observed_order_with_grooves(order):
+    """Central gap under refinement of both directions (levels 0-2) on the periodic cell of
+    a groove 0.5 H deep: the nodes on the steps keep the smooth orders (Q1 2, Q2 4)."""
+    g = GroovePattern(pitch=1.0, width=0.3, depth=0.5)
+    H = []
+    for lev in range(3):
+        X = graded_nodes(30.0, 20.0, level=lev)
+        p1 = FoilBearing1D(X)
+        u1, _ = p1.solve_newton(p1.initial_guess(EE), EE)
+        pb, u = _film(X, groove_nodes(g, 0.0, 0.5, level=lev), p1, u1, order=order,
+                      grooves=g, web_edges=False)
+        H.append(float(pb.gap(u, EE, np.array([0.0]))[0]))
+    d = np.abs(np.diff(H))
+    assert np.log2(d[0] / d[1]) == GAP_GROOVED[order].approx()
 
 
 # -- the deep-groove limit ------------------------------------------------------------------
