@@ -453,9 +453,10 @@ class _Film:
             else:
                 extra["groove_domain"] = (
                     f"periodic cell: the web spans {spans:.3g} groove pitches; the web's "
-                    f"two edge lands are left out (they lower the mean gap by about "
+                    f"edges are left out (the edge pitches are "
                     f"{100 * 2 * case.roller.groove_pitch / case.web.width:.2g} % of the "
-                    f"film's width at most; grooves = \"full\" solves them)")
+                    f"width, a bound on the error they leave; grooves = \"full\" solves "
+                    f"them)")
         if case.beta < 6.0:
             warnings += [f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
                                  "entry and exit zones; no uniform central gap exists"]
