@@ -217,11 +217,14 @@ def test_base_grooved_case_answers_in_json(capsys):
 
 
 # -- sizing ---------------------------------------------------------------------------------
-def test_grooves_sizing_command(capsys):
+def test_grooves_sizing_command(capsys, tmp_path):
     """One design at 40 m/s (the smooth roller's mu there is below 0.02): grooved, it keeps
-    mu above 0.2; the JSON names it the best."""
+    mu above 0.2; the JSON names it the best; the map is written as CSV and a chart."""
     assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--speed", "40",
-                 "--pitches", "1.27e-3", "--lands", "0.9", "--json", "--quiet"]) == 0
+                 "--pitches", "1.27e-3", "--lands", "0.9", "--json", "--quiet",
+                 "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "base_grooves.png").stat().st_size > 10_000
+    assert len((tmp_path / "base_grooves.csv").read_text().splitlines()) == 2
     out = json.loads(capsys.readouterr().out)
     (d,) = out["designs"]
     assert d["converged"] and d["feasible"] and d["mu"] > 0.2

@@ -47,7 +47,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--depths", default=f"{DEFAULT_DEPTH:g}",
                    help=f"groove depths [m], comma-separated (default {DEFAULT_DEPTH:g})")
     p.add_argument("--json", action="store_true", help="the designs as JSON (SI units)")
-    p.add_argument("--out", metavar="DIR", help="also write the map as CSV into DIR")
+    p.add_argument("--out", metavar="DIR", help="also write the map as CSV and a chart (PNG) into DIR")
     add_quiet_argument(p)
 
 
@@ -69,6 +69,11 @@ def run(args) -> int:
             for d in designs:
                 w.writerow(d.to_dict())
         print(f"wrote {path}", file=sys.stderr)
+        from ..io.charts import groove_chart
+
+        chart = groove_chart(designs, args.mu_min, folder / f"{Path(args.case).stem}_grooves.png",
+                             best)
+        print(f"wrote {chart}", file=sys.stderr)
     if args.json:
         print_json({"mu_min": args.mu_min, "designs": [d.to_dict() for d in designs],
                     "best": {f"{s:g}": (b.to_dict() if b else None) for s, b in best.items()}})
