@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import pytest
 
-__all__ = ["Order", "GAP_1D", "GAP_2D", "GAP_STUDY", "REYNOLDS_2D", "BEAM_HERMITE"]
+__all__ = ["Order", "GAP_1D", "GAP_2D", "GAP_GROOVED", "GAP_STUDY", "REYNOLDS_2D", "BEAM_HERMITE"]
 
 
 @dataclass(frozen=True)
@@ -36,6 +36,10 @@ GAP_1D = {1: Order(2.0, 0.3, "2.00"), 2: Order(4.0, 0.3, "4.00")}
 #: Central gap of the 2-D film + 1-D web (Eshel-Elrod, lambda = 10), refinement in both
 #: directions, levels 0-2, by pressure order: Q1 2, Q2 4. tests/test_fe2d.py.
 GAP_2D = {1: Order(2.0, 0.2, "1.99"), 2: Order(4.0, 0.3, "3.98")}
+
+#: The same on a grooved roller's periodic cell (groove depth 0.5, the step in the gap on
+#: element edges): the smooth orders are kept. tests/test_grooves.py.
+GAP_GROOVED = {1: Order(2.0, 0.2, "1.99"), 2: Order(4.0, 0.3, "3.98")}
 
 #: The reduced convergence study (base case at 40 m/s, ``quick=True``): observed order of
 #: h_center with linear pressure elements, by model. tests/test_studies.py.

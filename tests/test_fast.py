@@ -117,3 +117,39 @@ def test_pattern_is_shared():
     assert A.indices is B.indices and A.indptr is B.indptr
     assert A.has_canonical_format
 
+
+
+@pytest.fixture(scope="module", params=["full", "cell"])
+def grooved(request):
+    """A grooved roller (gap H_web + Delta(Z), contact on the lands): the full width with
+    its edge lands, or the periodic cell."""
+    from webfem.fem.grooves import GroovePattern, groove_nodes
+
+    X = graded_nodes(PRM.beta, 6.0, level=0)
+    p1 = FoilBearing1D(X)
+    u1 = _line_state(p1)
+    g = GroovePattern(pitch=1.0, width=0.3, depth=0.7)
+    cell = request.param == "cell"
+    p = FoilBearing2D(X, groove_nodes(g, 0.0, 0.5 if cell else 3.0), grooves=g,
+                      web_edges=not cell)
+    u = p.start_from_line(p1, u1, PRM)
+    loc = p.fbasis.doflocs
+    u[:p.nP] *= 1.0 + 0.3 * np.cos(loc[0]) * np.sin(3.0 * loc[1] + 0.2)
+    u[p.fixed] = 0.0
+    return p, u
+
+
+@pytest.mark.parametrize("newton", [True, False])
+def test_grooved_film(grooved, newton):
+    p, u = grooved
+    prm = FoilParameters(**{**PRM.__dict__, "land": 0.7})
+    assert np.any(p.groove_q > 0) and np.any(p.groove_q == 0)
+    fast_F, ref_F = p.residual(u, prm), p.residual(u, prm, reference=True)
+    assert _relative(fast_F, ref_F) < TOL
+    A = p.jacobian(u, prm, newton).toarray()
+    B = p.jacobian(u, prm, newton, reference=True).toarray()
+    assert _relative(A, B) < TOL
+    # the grooves and the land fraction are in both
+    smooth = FoilBearing2D(p.X, p.Z, web_edges=p.web_edges)
+    assert _relative(smooth.residual(u, prm), fast_F) > 1e-6
+    assert _relative(p.residual(u, PRM), fast_F) > 1e-6

@@ -18,7 +18,7 @@ LAYERS = [
     {"result", "describe"},
     {"models"},
     {"api"},
-    {"sweeps", "traction", "calibrate", "effects", "idler", "studies"},
+    {"sweeps", "traction", "calibrate", "effects", "idler", "studies", "groove_sizing"},
     {"io"},
     {"cli", "__main__"},
 ]

@@ -54,6 +54,8 @@ DIMENSIONS = {
     "web.acceleration": (1, 0, -2),
     "air.viscosity": (-1, 1, -1), "air.ambient_pressure": (-1, 1, -2),
     "air.mean_free_path": (1, 0, 0),
+    "roller.groove_pitch": (1, 0, 0), "roller.groove_width": (1, 0, 0),
+    "roller.groove_depth": (1, 0, 0),
     "friction.speed_constant": (1, 0, -1),
 }
 #: Numeric keys without a unit.

@@ -218,6 +218,18 @@ class Case:
         return "paper" if (v == "loads" and self.paper_physics) else v
 
     @property
+    def grooved(self) -> bool:
+        """True when the roller has circumferential grooves (width and depth > 0)."""
+        return self.roller.grooved
+
+    @property
+    def land_fraction(self) -> float:
+        """Share of the roller surface that is land, 1 - groove_width/groove_pitch (1 for a
+        smooth roller)."""
+        r = self.roller
+        return 1.0 - r.groove_width / r.groove_pitch if r.groove_width > 0.0 else 1.0
+
+    @property
     def eps(self) -> float:
         """Web speed parameter eps = 6 eta U / T_eff (Eq. 22, with the effective tension)."""
         return 6.0 * self.air.viscosity * self.U / self.tension_eff

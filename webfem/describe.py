@@ -41,6 +41,10 @@ def describe(result) -> str:
     if s.mesh is not None:
         lines.append(f"  {s.method or ''} on {s.mesh}; residual {s.residual:.2e}; contact "
                      f"carries {100 * (s.contact_share or 0.0):.1f} % of the wrap load")
+    if s.groove_domain is not None:
+        lines.append(f"  grooved roller: land fraction {s.land_fraction:.3f}; asperities carry "
+                     f"{100 * (s.contact_share_lands or 0.0):.1f} % of the lands' load; "
+                     f"{s.groove_domain}")
     if s.why is not None:
         err = ("not estimated" if s.estimated_error is None
                else f"{s.estimated_error:.2g} <= {s.tolerance:g}")

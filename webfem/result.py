@@ -173,6 +173,11 @@ class Summary(_ReadOnlyMapping):
     width_cells: int | None = None
     adapt_rounds: int | None = None
     solver_message: str | None = None
+    #: Grooved roller (fe2d): land fraction a/p_g (1 smooth), the share of the lands'
+    #: load carried by asperity contact, and the domain solved across the width.
+    land_fraction: float | None = None
+    contact_share_lands: float | None = None
+    groove_domain: str | None = None
     #: auto: the model that answered, its estimated relative error in ``quantity`` against
     #: ``tolerance``, and why it was chosen.
     model_used: str | None = None

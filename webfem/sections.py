@@ -130,6 +130,31 @@ class Roller(_Section):
         "(idler) roller; with inertia, turns on the idler slip check"))
     inertia: float = field(default=0.0, metadata=_num(
         "kg m^2", 0.0, lo_open=False, doc="moment of inertia J of an idler roller"))
+    groove_pitch: float = field(default=0.0, metadata=_num(
+        "m", 0.0, lo_open=False, doc="pitch p_g of circumferential grooves, land plus groove "
+        "(0: smooth roller)"))
+    groove_width: float = field(default=0.0, metadata=_num(
+        "m", 0.0, lo_open=False, doc="width g of a circumferential groove (0: smooth roller)"))
+    groove_depth: float = field(default=0.0, metadata=_num(
+        "m", 0.0, lo_open=False, doc="depth delta of a circumferential groove"))
+
+    def __post_init__(self):
+        super().__post_init__()
+        p, g, d = self.groove_pitch, self.groove_width, self.groove_depth
+        if g > 0.0 and p <= 0.0:
+            raise CaseError(f"roller.groove_pitch = {p!r} with roller.groove_width = {g!r}: "
+                            "grooves need a pitch: must be > 0 [m] (and > the groove width)")
+        if g > 0.0 and g >= p:
+            raise CaseError(f"roller.groove_width = {g!r} is out of range: must be < "
+                            f"roller.groove_pitch = {p!r} [m] (a land must remain)")
+        if g > 0.0 and d <= 0.0:
+            raise CaseError(f"roller.groove_depth = {d!r} with roller.groove_width = {g!r}: "
+                            "must be > 0 [m] when the grooves have a width")
+
+    @property
+    def grooved(self) -> bool:
+        """True when the roller has grooves of some width and depth."""
+        return self.groove_width > 0.0 and self.groove_depth > 0.0
 
 
 @dataclass(frozen=True)

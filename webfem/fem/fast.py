@@ -251,8 +251,10 @@ class FilmAssembler:
     the film-web Jacobian block is assembled element by element like the others.
     """
 
-    def __init__(self, fbasis, wbasis, T, width: float):
+    def __init__(self, fbasis, wbasis, T, width: float, groove=None):
         self.f = f = BasisData(fbasis)
+        #: groove depth at the quadrature points (grooved roller), added to the web's gap
+        self.groove = 0.0 if groove is None else np.asarray(groove, float)
         self.w = w = BasisData(wbasis, hess=(0,))
         self.T, self.width = T, width
         self.nP = nP = f.N
@@ -292,7 +294,7 @@ class FilmAssembler:
         f, T = self.f, self.T
         p, wv = u[:self.nP], u[self.nP:]
         P, gP = f.interpolate(p)
-        H = (T["M"] @ wv + departure(T["x"], prm.beta)).reshape(P.shape)
+        H = (T["M"] @ wv + departure(T["x"], prm.beta)).reshape(P.shape) + self.groove
         return P, gP, film_coefficients(H, P, gP[0], gP[1], prm.as_form_args(), newton)
 
     def _web(self, u, prm):

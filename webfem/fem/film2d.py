@@ -6,8 +6,14 @@ scale as X, so the operator stays isotropic; the web edges sit at Z = +-lambda):
     div(((1 + d P) H^3 + s H^2) grad P) = d((1 + d P) H)/dX + K (1 + ds P) P,
 
 P = 0 on the ends X = X_s, X_e and on the web edges (paper's Eq. 19); with the half width
-Z in [0, lambda], dP/dZ = 0 at Z = 0 (symmetry, natural). The gap H(X) comes from the 1-D
-web. Weak residual with test function q:
+Z in [0, lambda], dP/dZ = 0 at Z = 0 (symmetry, natural). The gap comes from the 1-D web,
+plus, on a grooved roller, the groove depth (:mod:`webfem.fem.grooves`):
+
+    H(X, Z) = H_web(X) + Delta(Z),    Delta = depth in a groove, 0 on a land,
+
+a field over the film's quadrature points; dH/dW is still 1, so the web coupling is
+unchanged. The periodic cell of a wide grooved web (land centre to groove centre) has
+dP/dZ = 0 on both sides and no edge condition. Weak residual with test function q:
 
     F_p = int ((1 + d P) H^3 + s H^2) grad P . grad q - (1 + d P) H q_X + K (1 + ds P) P q
 
@@ -30,7 +36,7 @@ __all__ = ["film_coefficients", "film_residual", "film_jacobian"]
 def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     """Arrays for :func:`film_residual` / :func:`film_jacobian` and the web coupling.
 
-    ``H`` is the gap at the quadrature points (floored smoothly at ``prm['floor']``, see
+    ``H`` is the gap at the quadrature points (web gap plus groove depth) (floored smoothly at ``prm['floor']``, see
     :func:`webfem.fem.forms.film_gap`), ``P, PX, PZ`` the
     pressure and its gradient there. ``newton=False`` freezes rho = 1 + d P and H^3 (Picard).
     """

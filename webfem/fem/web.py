@@ -4,7 +4,8 @@ Scaled as in :mod:`webfem.fem.forms`: the web equilibrium (paper's Eq. 16)
 
     Pbar + Pc(H) = chi - W'' + Dn (H''''),     W = 0 at both ends,
 
-with Pbar the width-averaged film pressure. These forms hold every term except Pbar, which
+with Pbar the width-averaged film pressure. On a grooved roller the asperities touch the
+lands only: Pc is the width average land Pc(H) (land = a/p_g, the land fraction). These forms hold every term except Pbar, which
 the 2-D model adds through its transfer matrices (:mod:`webfem.fem.transfer`):
 
     F_w = int W' v' + Dn (W'' - chi) v'' - (Pc(H) - chi) v   [ - int Pbar v ]
@@ -23,6 +24,8 @@ def web_coefficients(x, W, prm) -> dict:
     """Contact load and stiffness and the wrap indicator at quadrature points x."""
     H = W + departure(x, prm["beta"])
     Pc, kc = contact_law(H, prm)
+    land = prm.get("land", 1.0)             # grooved roller: contact on the lands only
+    Pc, kc = land * Pc, land * kc
     chi = in_wrap(x, prm["beta"])
     return {"chi": chi, "load": Pc - chi, "k_c": kc}
 

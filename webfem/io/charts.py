@@ -234,3 +234,43 @@ def calibration_chart(fit: dict, path) -> Path:
     for ax in (a, b):
         ax.grid(True, alpha=0.3)
     return _save(fig, path)
+
+
+def groove_chart(designs, mu_min: float, path, best: dict | None = None) -> Path:
+    """Groove sizing map: mu against land fraction, one line per groove pitch (and depth),
+    one panel per roller speed; the mu_min line, feasible designs filled, the best ringed.
+
+    ``designs``: :class:`webfem.groove_sizing.GrooveDesign` objects (or mappings with
+    their keys)."""
+    rows = [d.to_dict() if hasattr(d, "to_dict") else dict(d) for d in designs]
+    speeds = list(dict.fromkeys(r["speed"] for r in rows))
+    fig, axes = plt.subplots(1, len(speeds), figsize=(5.2 * len(speeds), 4.2), squeeze=False,
+                             sharey=True)
+    for ax, speed in zip(axes[0], speeds):
+        here = [r for r in rows if r["speed"] == speed]
+        for key in dict.fromkeys((r["pitch"], r["depth"]) for r in here):
+            line = sorted((r for r in here if (r["pitch"], r["depth"]) == key and
+                           r["converged"]), key=lambda r: r["land_fraction"])
+            if not line:
+                continue
+            x = [100 * r["land_fraction"] for r in line]
+            y = [r["mu"] for r in line]
+            (h,) = ax.plot(x, y, "-", label=f"pitch {key[0] * 1e3:.3g} mm, depth "
+                                            f"{key[1] * 1e3:.3g} mm")
+            ax.scatter(x, y, color=h.get_color(), zorder=3,
+                       facecolors=[h.get_color() if r["feasible"] else "white" for r in line])
+        b = (best or {}).get(speed)
+        if b is not None:
+            b = b.to_dict() if hasattr(b, "to_dict") else b
+            ax.scatter([100 * b["land_fraction"]], [b["mu"]], s=180, facecolors="none",
+                       edgecolors="k", zorder=4, label="best: most land with mu >= mu_min")
+        ax.axhline(mu_min, color="k", ls="--", lw=1)
+        ax.text(ax.get_xlim()[0], mu_min, f" mu_min = {mu_min:g}", va="bottom", fontsize=8)
+        ax.set_title(f"roller speed {speed:g} m/s", fontsize=10)
+        ax.set_xlabel("land fraction a / pitch [%]  (contact area)")
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("traction coefficient mu [-]")
+    axes[0][-1].legend(fontsize=7, loc="best")
+    fig.suptitle("Grooved roller sizing (fe2d): filled = keeps mu >= mu_min", fontsize=11)
+    fig.tight_layout()
+    return save_figure(fig, path)

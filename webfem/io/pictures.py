@@ -146,7 +146,10 @@ def film_figure(result, path, title: str | None = None) -> Path:
         peaks = (f"; colours capped at 1.5 T/R, peaks {p.min():.0f} and {p.max():.0f} Pa"
                  if capped else "")
         ax.set_ylabel("z across width [mm]")
-        ax.set_title(f"a. film pressure above ambient, full width{peaks}", fontsize=9,
+        # the periodic groove cell, mirrored: a land in the middle, half a groove each side
+        span = ("one groove pitch" if s.groove_domain and s.groove_domain.startswith(
+            "periodic") else "full width")
+        ax.set_title(f"a. film pressure above ambient, {span}{peaks}", fontsize=9,
                      loc="left", pad=12)
         _edges(ax, half, label=True)
 

@@ -103,6 +103,11 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
     is accepted for sweeps and not used (each point picks its model afresh)."""
     quantity, tol = options.quantity, options.tol
     why = []
+    if case.grooved:   # only the 2-D film carries the grooves across the width
+        r = fe2d.solve_case(case, fe_options(options, FE2DOptions),
+                            raise_on_failure=raise_on_failure)
+        return _answer(r, FE2D_ERROR, quantity, tol,
+                       ["grooved roller: only fe2d solves the land and groove film"])
     r = closed.solve_case(case, ClosedFormOptions())
     if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
         return _answer(r, None, quantity, tol,

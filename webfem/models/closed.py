@@ -25,7 +25,8 @@ from ..physics.effects import CLOSED_FORM_CARRIES, idler_check, included, left_o
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
                                 wrap_average_linear_gap, wrap_average_loads)
 from ..errors import NoAdmissibleSolution
-from ..physics.validity import contact_overload, slip_warning, thin_film_check
+from ..physics.validity import (contact_overload, grooves_refused, slip_warning,
+                                thin_film_check)
 from ..result import Diagnostics, Fields, Result, Summary
 from .options import ClosedFormOptions
 
@@ -167,7 +168,8 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
                ) -> Result:
     """Closed-form solution of one case, with fields along the wrap for charts and VTU
     (``options.n_points`` points). ``initial`` is accepted for the registry's common
-    signature and not used: the closed form needs no start."""
+    signature and not used: the closed form needs no start. A grooved roller is refused."""
+    grooves_refused(case, "the closed form")
     thin_film_check(case)
     t0 = time.perf_counter()
     values = evaluate(**case_arrays([case]), variant=case.friction_variant,
@@ -202,6 +204,8 @@ def solve(case: Case, options: ClosedFormOptions | None = None, **values) -> Res
 def solve_many(cases) -> list[Result]:
     """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
     cases = list(cases)
+    for c in cases:
+        grooves_refused(c, "the closed form")
     out: list[Result | None] = [None] * len(cases)
     kinds = {(c.friction_variant, c.friction.distribution) for c in cases}
     for variant, distribution in kinds:

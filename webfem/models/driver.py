@@ -209,7 +209,7 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
     mu = float(np.sum(loc["mu"] * wts) / prm.beta)
     shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
     Pf = (p - case.air.ambient_pressure) / case.p_bar
-    Pc = forms.contact_law(h / Hs, prm.as_form_args())[0]
+    Pc = prm.land * forms.contact_law(h / Hs, prm.as_form_args())[0]  # lands only
     contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
     # at the onset of slip the sliding speed is small: the asperities hold with the static
     # mu_cc on the share of the wrap load they carry, the film with nothing
@@ -218,6 +218,8 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
     e = 0.5 * prm.beta
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
     extra = dict(disc.summary_extra(case, problem, options))
+    if hasattr(disc, "summary_state"):
+        extra.update(disc.summary_state(case, problem, u, prm, pts, wts))
     warnings = list(_warnings(case, options)) + list(extra.pop("warnings", [])) + notes
     slip = slip_warning(case, Hmin * Hs)
     if slip:

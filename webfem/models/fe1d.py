@@ -172,7 +172,11 @@ LINE = _Line()
 
 def solve_case(case: Case, options: FE1DOptions, *, initial: Result | None = None,
                raise_on_failure: bool = True) -> Result:
-    """The registry's entry: :func:`solve` with a ready options object."""
+    """The registry's entry: :func:`solve` with a ready options object. A grooved roller is
+    refused (the 1-D film has no width)."""
+    from ..physics.validity import grooves_refused
+
+    grooves_refused(case, "fe1d")
     return solve_fe(LINE, case, options, initial, raise_on_failure)
 
 

@@ -36,6 +36,7 @@ from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard
 from ..fem.scaling import FoilParameters
+from ..fem.grooves import GroovePattern, groove_nodes
 from ..fem.transfer import film_mesh, quadrature_matrices, width_nodes
 from ..fem.web import web_coefficients, web_jacobian, web_residual
 from ..physics.friction import friction_for
@@ -57,23 +58,39 @@ class FoilBearing2D:
     Unknowns ``u = [p (film DOFs), w (web DOFs)]``. Built once per mesh.
     """
 
-    def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2):
+    def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2,
+                 grooves: GroovePattern | None = None, web_edges: bool = True,
+                 ambient_grooves: bool = False):
         if order not in (1, 2):
             raise InputError(f"order = {order!r} is not valid: must be 1 or 2")
         self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
+        #: the roller's grooves (None: smooth) and whether Z ends at web edges (False: the
+        #: periodic cell of a grooved roller, symmetric on both sides)
+        self.grooves, self.web_edges = grooves, bool(web_edges)
+        #: True: P = 0 in the grooves and on their edges (the deep-groove limit)
+        self.ambient_grooves = bool(ambient_grooves) and grooves is not None
         self.width = float(self.Z[-1] - self.Z[0])
         self.order = order
         self.line = line_mesh(self.X)
         # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
         self.wbasis = Basis(self.line, ElementLineHermite(), intorder=6)
-        self.mesh = film_mesh(self.X, self.Z)
+        self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges)
         self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                             intorder=4 if order == 2 else 3)
         self.T = quadrature_matrices(self.fbasis, self.wbasis)
         self.nP, self.nW = self.fbasis.N, self.wbasis.N
         self.qshape = self.fbasis.X.shape[-1]
-        fixed_p = self.fbasis.get_dofs({"ends", "edges"}).all()
+        fixed_p = self.fbasis.get_dofs({"ends", "edges"} if self.web_edges
+                                       else {"ends"}).all()
+        zq = np.asarray(self.fbasis.global_coordinates()[1])
+        #: groove depth Delta(Z) at the film's quadrature points (0: land or smooth)
+        self.groove_q = (grooves.depth_at(zq) if grooves is not None else np.zeros_like(zq))
         fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
+        if self.ambient_grooves:
+            zd = self.fbasis.doflocs[1]
+            off = np.abs(zd - grooves.pitch * np.round(zd / grooves.pitch))
+            fixed_p = np.concatenate([fixed_p, np.flatnonzero(
+                off >= 0.5 * grooves.land * (1.0 - 1e-9))])
         self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
         self.free = np.setdiff1d(np.arange(self.n_dofs), self.fixed)
         self._xw = np.asarray(self.wbasis.global_coordinates()[0])
@@ -96,13 +113,15 @@ class FoilBearing2D:
         T = self.T
         H = (T["M"] @ w + forms.departure(T["x"], prm.beta)).reshape(-1, self.qshape)
         P = self.fbasis.interpolate(p)
+        H = H + self.groove_q
         return P, H
 
     @property
     def assembler(self) -> fast.FilmAssembler:
         """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
         if self._assembler is None:
-            self._assembler = fast.FilmAssembler(self.fbasis, self.wbasis, self.T, self.width)
+            self._assembler = fast.FilmAssembler(self.fbasis, self.wbasis, self.T, self.width,
+                                                 self.groove_q)
         return self._assembler
 
     def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
@@ -161,6 +180,15 @@ class FoilBearing2D:
         Pq = np.asarray(self.fbasis.interpolate(self._split(u)[0])).ravel()
         return self._mass.solve(self.T["M"].T @ (self.T["dx"] * Pq) / self.width)
 
+    def land_average(self, u) -> np.ndarray:
+        """Hermite DOFs of the film pressure averaged over the lands only (as
+        :meth:`width_average`; the whole width on a smooth roller)."""
+        land = (self.groove_q.ravel() == 0.0).astype(float)
+        Pq = np.asarray(self.fbasis.interpolate(self._split(u)[0])).ravel()
+        width = float(np.sum(self.T["dx"] * land)) / float(np.sum(self.T["dx"])) * self.width
+        self.width_average(u)          # builds the mass matrix
+        return self._mass.solve(self.T["M"].T @ (self.T["dx"] * land * Pq) / width)
+
     def pressure(self, u, X) -> np.ndarray:
         """Width-averaged film pressure at X (through :meth:`width_average`)."""
         X = np.asarray(X, float)
@@ -194,7 +222,8 @@ class FoilBearing2D:
                        - (problem1d.gap(u1d, prm, xa) - forms.departure(xa, prm.beta))) / (xb - xa)
         loc = self.fbasis.doflocs
         lam = max(abs(self.Z[0]), abs(self.Z[-1]))
-        u[:self.nP] = problem1d.pressure(u1d, loc[0]) * 1.5 * (1.0 - (loc[1] / lam) ** 2)
+        shape = 1.5 * (1.0 - (loc[1] / lam) ** 2) if self.web_edges else 1.0
+        u[:self.nP] = problem1d.pressure(u1d, loc[0]) * shape
         u[self.fixed] = 0.0
         return u
 
@@ -213,7 +242,18 @@ class FoilBearing2D:
         from (``line_start``), continuation in the web width (:func:`_width_continuation`)."""
         options = options or FE2DOptions()
         u, info = self._plain_newton(u0, prm, options.tol, options.max_iter)
-        if not info["converged"] and self.line_start is not None:
+        if not info["converged"] and self.ambient_grooves:
+            # the solved groove pressure is close to ambient in deep grooves: start there
+            solved = FoilBearing2D(self.X, self.Z, self.order, self.grooves, self.web_edges)
+            v, first = solved.solve_newton(u0, prm, options)
+            if first["converged"]:
+                v[self.fixed] = 0.0
+                u, info = self._plain_newton(v, prm, options.tol, options.max_iter)
+                info["iterations"] += first["iterations"]
+                info["reason"] += " (from the solved groove pressure)"
+        elif not info["converged"] and self.grooves is not None:
+            u, info = _depth_continuation(self, u0, prm, options, info)
+        elif not info["converged"] and self.line_start is not None:
             p1, u1 = self.line_start
             u, info = _width_continuation(self, p1, u1, prm, options, info)
         return u, info
@@ -267,6 +307,36 @@ def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict)
             f = float(np.sqrt(f * f_prev))
 
 
+def _depth_continuation(problem: FoilBearing2D, u0, prm, opts, failed: dict):
+    """Newton from shallow grooves (close to the smooth roller the start comes from) to the
+    true depth: the depth grows by 4 times per step from 1/64 of it; a failed step is
+    halved (in log depth)."""
+    g = problem.grooves
+    its, hist = failed["iterations"], list(failed["history"])
+    f_prev, f, u = None, 1.0 / 64.0, u0
+    while True:
+        step = FoilBearing2D(problem.X, problem.Z, problem.order,
+                             GroovePattern(g.pitch, g.width, g.depth * f), problem.web_edges,
+                             problem.ambient_grooves)
+        v, info = step._plain_newton(u, prm, opts.tol, opts.max_iter)
+        its += info["iterations"]
+        hist += info["history"]
+        if info["converged"]:
+            u, f_prev = v, f
+            if f == 1.0:
+                info.update(iterations=its, history=hist,
+                            reason=info["reason"] + " (after continuation in groove depth)")
+                return u, info
+            f = min(1.0, 4.0 * f)
+        else:
+            if f_prev is None or f / f_prev < 1.01:
+                info.update(iterations=its, history=hist,
+                            reason=f"groove depth continuation failed at {f:.3g} x the "
+                                   "depth: " + info["reason"])
+                return v, info
+            f = float(np.sqrt(f * f_prev))
+
+
 def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarray:
     """A state on a finer (nested in X) mesh: web through its exact values and slopes,
     film pressure through probes."""
@@ -285,15 +355,43 @@ def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> Film:
     pts = problem.mesh.p
     Hs = case.h_scale
     H = problem.gap(u, prm, pts[0])
-    h = H * Hs
+    groove = (problem.grooves.depth_at(pts[1]) if problem.grooves is not None
+              else np.zeros_like(H))
+    on_land = groove == 0.0
+    h = (H + groove) * Hs          # the film gap: web gap plus groove depth
     p_rel = problem.film_pressure_at_vertices(u) * case.p_bar
-    loc = friction_for(case, h, resting=True)
+    loc = friction_for(case, H * Hs, resting=True)
     return Film(
         points=np.vstack([pts * case.x_scale, np.zeros(pts.shape[1])]).T,
         quads=problem.mesh.t.T.copy(),
         p=p_rel + case.air.ambient_pressure, p_rel=p_rel, h=h,
-        p_contact=forms.contact_law(H, prm.as_form_args())[0] * case.p_bar,
+        p_contact=forms.contact_law(H, prm.as_form_args())[0] * case.p_bar * on_land,
         chi_c=loc["chi_c"], mu=loc["mu"], regime=loc["regime"].astype(float))
+
+
+def self_probe(problem: FoilBearing2D, dofs, X) -> np.ndarray:
+    """The web-space function with Hermite ``dofs`` at scaled points X."""
+    return problem.wbasis.probes(np.asarray(X, float)[None, :]) @ dofs
+
+
+#: A wide web is solved on the periodic groove cell from this many groove pitches across it
+#: (``grooves = "auto"``).
+CELL_PITCHES = 10.0
+
+
+def groove_domain(case: Case, options: FE2DOptions):
+    """The scaled groove pattern of ``case`` (None: smooth roller) and the domain across the
+    width: "cell" (the periodic cell land centre to groove centre), "full" (the web's width
+    with its edge lands) or "smooth"."""
+    if not case.grooved:
+        return None, "smooth"
+    r = case.roller
+    pattern = GroovePattern(r.groove_pitch / case.x_scale, r.groove_width / case.x_scale,
+                            r.groove_depth / case.h_scale)
+    domain = options.grooves
+    if domain == "auto":
+        domain = "cell" if case.web.width >= CELL_PITCHES * r.groove_pitch else "full"
+    return pattern, domain
 
 
 class _Film:
@@ -304,31 +402,77 @@ class _Film:
 
     def start(self, case: Case, prm: FoilParameters, options: FE2DOptions, initial) -> Start:
         line_start = initial.state("line_result") if initial is not None else None
-        one = fe1d.solve_case(case, FE2DOptions.line_options(options), initial=line_start,
+        smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
+        one = fe1d.solve_case(smooth, FE2DOptions.line_options(options), initial=line_start,
                               raise_on_failure=False)
         p1, u1 = one.state("problem"), one.state("state")
-        Z = width_nodes(case.lam, options.level, half=options.symmetry,
-                        fine=options.width_fine)
-        problem = FoilBearing2D(p1.X, Z, order=options.order)
+        pattern, domain = groove_domain(case, options)
+        if pattern is None:
+            Z = width_nodes(case.lam, options.level, half=options.symmetry,
+                            fine=options.width_fine)
+        elif domain == "cell":
+            Z = groove_nodes(pattern, 0.0, 0.5 * pattern.pitch, options.width_fine,
+                             options.level)
+        else:
+            Z = groove_nodes(pattern, 0.0, case.lam, options.width_fine, options.level)
+            if not options.symmetry:
+                Z = np.concatenate([-Z[:0:-1], Z])
+        problem = FoilBearing2D(p1.X, Z, order=options.order, grooves=pattern,
+                                web_edges=domain != "cell",
+                                ambient_grooves=options.groove_pressure == "ambient")
         problem.line_start = (p1, u1)
         return Start(problem, problem.start_from_line(p1, u1, prm),
                      iterations=one["iterations"], solver={"line_result": one})
 
     def refined(self, problem, u, prm, X, options):
-        finer = FoilBearing2D(X, problem.Z, order=options.order)
+        finer = FoilBearing2D(X, problem.Z, order=options.order, grooves=problem.grooves,
+                              web_edges=problem.web_edges,
+                              ambient_grooves=problem.ambient_grooves)
         return finer, _transfer2d(problem, u, prm, finer)
 
     def mesh_text(self, problem, options) -> str:
-        return (f"{'half' if options.symmetry else 'full'} width, {len(problem.X) - 1} x "
+        if not problem.web_edges:
+            where = "periodic groove cell (land centre to groove centre)"
+        else:
+            where = f"{'half' if options.symmetry else 'full'} width" + (
+                " with its edge lands (a land centred on the web's centreline)"
+                if problem.grooves is not None else "")
+        return (f"{where}, {len(problem.X) - 1} x "
                 f"{len(problem.Z) - 1} Q{options.order} cells; x: "
                 f"{fe1d.line_mesh_text(problem.X, options)}; web: Hermite line")
 
     def summary_extra(self, case: Case, problem, options) -> dict:
-        extra = {"n_cells": int(problem.mesh.nelements), "width_cells": len(problem.Z) - 1}
+        extra = {"n_cells": int(problem.mesh.nelements), "width_cells": len(problem.Z) - 1,
+                 "land_fraction": case.land_fraction}
+        warnings = []
+        if problem.grooves is not None:
+            spans = case.web.width / case.roller.groove_pitch
+            if problem.web_edges:
+                extra["groove_domain"] = (f"full width: the web spans {spans:.3g} groove "
+                                          "pitches, edge lands included")
+            else:
+                extra["groove_domain"] = (
+                    f"periodic cell: the web spans {spans:.3g} groove pitches; the web's "
+                    f"edges are left out (the edge pitches are "
+                    f"{100 * 2 * case.roller.groove_pitch / case.web.width:.2g} % of the "
+                    f"width, a bound on the error they leave; grooves = \"full\" solves "
+                    f"them)")
         if case.beta < 6.0:
-            extra["warnings"] = [f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
+            warnings += [f"beta = {case.beta:.3g} < 6: the wrap is shorter than the "
                                  "entry and exit zones; no uniform central gap exists"]
+        if warnings:
+            extra["warnings"] = warnings
         return extra
+
+    def summary_state(self, case: Case, problem, u, prm, pts, wts) -> dict:
+        """The contact share of the load on the lands: asperity contact over (film pressure
+        averaged over the lands + contact), integrated over the wrap."""
+        if problem.grooves is None:
+            return {}
+        Pl = self_probe(problem, problem.land_average(u), pts)
+        Pc = forms.contact_law(problem.gap(u, prm, pts), prm.as_form_args())[0]
+        share = float(np.sum(Pc * wts) / max(np.sum((Pl + Pc) * wts), 1e-300))
+        return {"contact_share_lands": share}
 
     def film(self, case, problem, u, prm) -> Film:
         return _film_fields(case, problem, u, prm)

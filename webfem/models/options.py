@@ -306,6 +306,13 @@ class FE2DOptions(FE1DOptions):
                                lo=0.0, lo_open=True, hi=10.0)
     symmetry: bool = option(True, "half width with a symmetry condition (false: full width)",
                             "bool")
+    grooves: str = option("auto", "grooved roller: the periodic cell land centre to groove "
+                          "centre (a wide web), the full width with its edge lands, or auto "
+                          "(the cell when the web spans >= 10 pitches)", "choice",
+                          choices=("auto", "cell", "full"))
+    groove_pressure: str = option("solved", "grooved roller: the groove pressure solved with "
+                                  "the film, or held at ambient (the deep-groove limit, for "
+                                  "checks)", "choice", choices=("solved", "ambient"))
 
     @classmethod
     def line_options(cls, options: "FE2DOptions") -> FE1DOptions:

@@ -75,7 +75,7 @@ def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper
 
 
 def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_length=0.0,
-                  shear_p=0.0):
+                  shear_p=0.0, land=1.0, groove_depth=0.0):
     """Friction from the solved loads (``friction.variant = "loads"``).
 
     The local traction on the web is the asperity friction on the contact pressure plus the
@@ -84,6 +84,11 @@ def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_leng
     (first-order slip lowers the Couette shear) and ``shear_p`` the pressure-driven part
     -(h/2) dp/dx; mu(x) = tau / p_bar with p_bar = T_eff/R. Unlike Eq. 28 the film's shear is
     not weighted by the film's share of the load: a film shears whatever it carries.
+
+    A grooved roller (``land`` a/p_g < 1, ``groove_depth`` delta): ``p_c`` is the contact
+    pressure on the lands, which acts on the land fraction only (the width average is
+    land p_c), and the Couette shear is land eta U_s/(h + 2 a lambda) + (1 - land) eta U_s /
+    (h + delta + 2 a lambda).
 
     Returns the arrays of :func:`local_friction` (``chi_c`` = min(p_c/p_bar, 1), ``mu_f`` the
     film's part tau_film/p_bar; ``regime`` by the gap against ``h_edge`` and 3 sigma).
@@ -94,12 +99,15 @@ def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_leng
     0.000249
     """
     h = np.asarray(h, dtype=float)
-    p_c = np.asarray(p_c, dtype=float)
+    p_c = land * np.asarray(p_c, dtype=float)
     mu_c = mu_boundary(U_s, mu_cc, C) + 0.0 * h
     with np.errstate(divide="ignore"):
         tau_f = np.where(h + slip_length > 0.0,
                          eta * U_s / np.where(h + slip_length > 0.0, h + slip_length, 1.0),
-                         np.inf) + shear_p
+                         np.inf)
+        if land < 1.0:
+            tau_f = land * tau_f + (1.0 - land) * eta * U_s / (h + groove_depth + slip_length)
+        tau_f = tau_f + shear_p
     mu_f = tau_f / p_bar
     return {"chi_c": np.minimum(p_c / p_bar, 1.0), "mu_c": mu_c, "mu_f": mu_f,
             "mu": mu_c * p_c / p_bar + mu_f, "regime": regime_code(h, h_edge, sigma)}
@@ -128,7 +136,8 @@ def friction_for(case, h, resting: bool = False, p=None, dpdx=None) -> dict:
             mu_cc=case.friction.mu_cc, C=case.friction.speed_constant,
             h_edge=resting_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
                                case.friction.distribution, RESTING_SHARE if resting else 1.0),
-            sigma=case.sigma, slip_length=slip, shear_p=shear_p)
+            sigma=case.sigma, slip_length=slip, shear_p=shear_p, land=case.land_fraction,
+            groove_depth=case.roller.groove_depth)
     return local_friction(h, R=case.roller.radius, T=case.tension_eff, U_s=case.U_slide,
                           eta=case.air.viscosity, E_b=w.modulus_thickness,
                           sigma=case.sigma, t=w.thickness, mu_cc=case.friction.mu_cc,

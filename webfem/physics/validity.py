@@ -77,3 +77,21 @@ def contact_overload(case) -> str | None:
             f"({p0:.4g} Pa); lower web.tension below "
             f"{p0 * case.roller.radius + case.web_inertia:.4g} N/m or "
             "raise web.modulus_thickness or web.roughness")
+
+
+#: The case keys of a grooved roller.
+GROOVE_KEYS = ("roller.groove_pitch", "roller.groove_width", "roller.groove_depth")
+
+
+def grooves_refused(case, model: str) -> None:
+    """An :class:`~webfem.errors.InputError` when ``case`` has a grooved roller, which only
+    the 2-D film model (fe2d) solves."""
+    if case.grooved:
+        from ..errors import InputError
+
+        r = case.roller
+        raise InputError(
+            f"{model} cannot solve a grooved roller (roller.groove_pitch = {r.groove_pitch:g}, "
+            f"roller.groove_width = {r.groove_width:g}, roller.groove_depth = "
+            f"{r.groove_depth:g} m): use model fe2d or auto, or set roller.groove_width = 0 "
+            "for a smooth roller")

@@ -1,0 +1,241 @@
+"""Grooved rollers (issue 15): case keys, the land-and-groove film of fe2d and its limits.
+
+- zero depth (at the discrete level) or zero width (in a case) is the smooth 2-D model;
+- deep grooves with the groove pressure held at ambient on a wide web are the smooth narrow
+  web of width = land under the tension T pitch/land (physics.md: exact in that limit), for
+  two geometries; with the groove pressure solved the excess falls with depth;
+- the periodic cell and the full width agree in the middle of a wide web.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from webfem import Case
+from webfem.cli import main
+from webfem.errors import InputError
+from webfem.fem.grooves import GroovePattern, groove_nodes
+from webfem.fem.mesh import graded_nodes
+from webfem.fem.scaling import FoilParameters
+from webfem.models import auto, closed, fe1d, fe2d
+from webfem.models.options import FE2DOptions
+from webfem.models.fe1d import FoilBearing1D
+from webfem.models.fe2d import FoilBearing2D
+
+from orders import GAP_GROOVED
+
+GROOVED = {"roller.groove_pitch": 1.27e-3, "roller.groove_width": 0.25e-3,
+           "roller.groove_depth": 0.25e-3}
+EE = FoilParameters(beta=30.0, K=0.0, d=0.0, Dn=0.0, c=0.0, S=1.0, contact=0.0, floor=1e-3)
+
+
+# -- case keys ------------------------------------------------------------------------------
+@pytest.mark.parametrize("values, words", [
+    ({"roller.groove_width": 1e-3}, ["roller.groove_pitch = 0.0", "> 0"]),
+    ({"roller.groove_width": 1e-3, "roller.groove_pitch": 1e-3, "roller.groove_depth": 1e-4},
+     ["roller.groove_width = 0.001", "< roller.groove_pitch = 0.001"]),
+    ({"roller.groove_width": 1e-3, "roller.groove_pitch": 2e-3},
+     ["roller.groove_depth = 0.0", "> 0"]),
+    ({"roller.groove_depth": -1e-3}, ["roller.groove_depth = -0.001", ">= 0"]),
+])
+def test_invalid_grooves_are_refused_with_key_value_and_range(values, words):
+    with pytest.raises(InputError) as err:
+        Case().updated(values)
+    for w in words:
+        assert w in str(err.value)
+
+
+def test_land_fraction():
+    assert Case().land_fraction == 1.0 and not Case().grooved
+    c = Case().updated(GROOVED)
+    assert c.grooved and c.land_fraction == pytest.approx(1.0 - 0.25 / 1.27, rel=1e-12)
+    # a pitch without a groove width is a smooth roller
+    assert Case().updated({"roller.groove_pitch": 1e-3}).land_fraction == 1.0
+
+
+def test_pattern_nodes_lie_on_every_edge():
+    g = GroovePattern(pitch=0.77, width=0.15, depth=5.0)
+    Z = groove_nodes(g, 0.0, 10.0, fine=0.25, level=1)
+    for e in g.edges(0.0, 10.0):
+        assert np.min(np.abs(Z - e)) < 1e-12
+    mid = 0.5 * (Z[1:] + Z[:-1])
+    # no cell straddles a step: the depth at both ends of a cell's interior agrees
+    left, right = Z[:-1] + 1e-9, Z[1:] - 1e-9
+    assert np.array_equal(g.depth_at(left), g.depth_at(right))
+    assert g.depth_at(mid).max() == 5.0 and g.depth_at(mid).min() == 0.0
+
+
+# -- model choice -----------------------------------------------------------------------------
+def test_closed_form_and_fe1d_refuse_grooves_naming_the_keys():
+    c = Case().updated(GROOVED)
+    for solve in (closed.solve, fe1d.solve):
+        with pytest.raises(InputError, match="roller.groove_width"):
+            solve(c)
+
+
+# -- the discrete limits --------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def line():
+    X = graded_nodes(30.0, 20.0)
+    p1 = FoilBearing1D(X)
+    u1, info = p1.solve_newton(p1.initial_guess(EE), EE)
+    assert info["converged"]
+    return X, p1, u1
+
+
+def _film(X, Z, p1, u1, **kw):
+    pb = FoilBearing2D(X, Z, **kw)
+    u, info = pb.solve_newton(pb.start_from_line(p1, u1, EE), EE)
+    assert info["converged"], info["reason"]
+    return pb, u
+
+
+def test_zero_depth_is_the_smooth_film(line):
+    """Grooves of zero depth on the same mesh: the smooth solution to solver tolerance; a
+    shallow groove moves the gap by an amount of the order of its depth."""
+    X, p1, u1 = line
+    g = GroovePattern(pitch=1.0, width=0.3, depth=0.0)
+    Z = groove_nodes(g, 0.0, 10.0)
+    ps, us = _film(X, Z, p1, u1)
+    pg, ug = _film(X, Z, p1, u1, grooves=g)
+    h = [float(p.gap(u, EE, np.array([0.0]))[0]) for p, u in ((ps, us), (pg, ug))]
+    assert abs(h[1] - h[0]) < 1e-9
+    pd, ud = _film(X, Z, p1, u1, grooves=GroovePattern(1.0, 0.3, 1e-3))
+    hd = float(pd.gap(ud, EE, np.array([0.0]))[0])
+    assert 1e-6 < abs(hd - h[0]) < 1e-2
+
+
+def test_shallow_cell_is_the_infinitely_wide_web(line):
+    """The periodic cell (no web edge) of a zero-depth groove is the 1-D model."""
+    X, p1, u1 = line
+    g = GroovePattern(pitch=1.0, width=0.3, depth=0.0)
+    pc, uc = _film(X, groove_nodes(g, 0.0, 0.5), p1, u1, grooves=g, web_edges=False)
+    H2 = float(pc.gap(uc, EE, np.array([0.0]))[0])
+    H1 = float(p1.gap(u1, EE, np.array([0.0]))[0])
+    assert H2 == pytest.approx(H1, rel=1e-6)
+
+
+def test_zero_width_case_is_the_smooth_case():
+    c = Case().updated({"roller.speed": 40.0})
+    g = c.updated({"roller.groove_pitch": 1.27e-3, "roller.groove_depth": 0.25e-3})
+    a, b = fe2d.solve(c), fe2d.solve(g)
+    assert b["h_center"] == pytest.approx(a["h_center"], rel=1e-9)
+    assert b["land_fraction"] == 1.0 and b["contact_share_lands"] is None
+
+
+@pytest.mark.parametrize("order", [1, pytest.param(2, marks=pytest.mark.slow)])
+def test_observed_order_with_grooves(order):
+    """Central gap under refinement of both directions (levels 0-2) on the periodic cell of
+    a groove 0.5 H deep: the nodes on the steps keep the smooth orders (Q1 2, Q2 4)."""
+    g = GroovePattern(pitch=1.0, width=0.3, depth=0.5)
+    H = []
+    for lev in range(3):
+        X = graded_nodes(30.0, 20.0, level=lev)
+        p1 = FoilBearing1D(X)
+        u1, _ = p1.solve_newton(p1.initial_guess(EE), EE)
+        pb, u = _film(X, groove_nodes(g, 0.0, 0.5, level=lev), p1, u1, order=order,
+                      grooves=g, web_edges=False)
+        H.append(float(pb.gap(u, EE, np.array([0.0]))[0]))
+    d = np.abs(np.diff(H))
+    assert np.log2(d[0] / d[1]) == GAP_GROOVED[order].approx()
+
+
+# -- the deep-groove limit ------------------------------------------------------------------
+def _narrow(case: Case, land: float, pitch: float) -> Case:
+    """The smooth narrow web of width = land under the tension T pitch/land (and bending
+    D pitch/land: the web equation divided by the land fraction)."""
+    f = pitch / land
+    return case.updated({"web.width": land, "web.tension": case.web.tension * f,
+                         "web.bending_stiffness": case.bending_used * f,
+                         "roller.groove_width": 0.0})
+
+
+@pytest.mark.parametrize("land, groove", [(2e-3, 1e-3), (3e-3, 1e-3)])
+def test_deep_grooves_at_ambient_are_narrow_webs(land, groove):
+    """physics.md: each land is a foil bearing of width a under T p/a; within 0.5 % in
+    h_center and 1 % in h_min (measured: about 0.1 %)."""
+    c = Case().updated({"roller.groove_pitch": land + groove, "roller.groove_width": groove,
+                        "roller.groove_depth": 1e-3, "web.width": 0.05})
+    r = fe2d.solve(c, grooves="cell", groove_pressure="ambient")
+    n = fe2d.solve(_narrow(c, land, land + groove))
+    assert r["h_center"] == pytest.approx(n["h_center"], rel=5e-3)
+    assert r["h_min"] == pytest.approx(n["h_min"], rel=1e-2)
+    # the grooves are what lands the web: the smooth roller flies far higher
+    assert fe2d.solve(c.updated({"roller.groove_width": 0.0}))["h_center"] > 3 * r["h_center"]
+
+
+@pytest.mark.slow
+def test_solved_groove_pressure_approaches_the_limit_with_depth():
+    """With the groove pressure solved, the excess over the ambient-groove limit is positive
+    and falls with depth (physics.md: like depth^-1.45)."""
+    land, groove = 2e-3, 1e-3
+    c = Case().updated({"roller.groove_pitch": land + groove, "roller.groove_width": groove,
+                        "roller.groove_depth": 1e-3, "web.width": 0.05})
+    excess = []
+    for depth in (0.25e-3, 0.5e-3, 1e-3):
+        d = c.updated({"roller.groove_depth": depth})
+        solved = fe2d.solve(d, grooves="cell")["h_center"]
+        limit = fe2d.solve(d, grooves="cell", groove_pressure="ambient")["h_center"]
+        excess.append(solved / limit - 1.0)
+    print("depth 0.25, 0.5, 1 mm: h_center excess over the ambient-groove limit", excess)
+    assert excess[0] > excess[1] > excess[2] > 0.0, excess
+
+
+# -- domains --------------------------------------------------------------------------------
+def test_auto_domain_and_summary():
+    c = Case().updated(GROOVED)
+    r = auto.solve(c)
+    assert r["model_used"] == "fe2d" and r["converged"]
+    assert "periodic cell" in r["groove_domain"] and "27.6" in r["groove_domain"]
+    assert r["land_fraction"] == pytest.approx(c.land_fraction)
+    assert 0.0 < r["contact_share"] <= r["contact_share_lands"] <= 1.0
+    opts = FE2DOptions()
+    assert fe2d.groove_domain(c.updated({"web.width": 12.6e-3}), opts)[1] == "full"
+    assert fe2d.groove_domain(c.updated({"web.width": 12.8e-3}), opts)[1] == "cell"
+    assert fe2d.groove_domain(c, opts.replace(grooves="full"))[1] == "full"
+    assert fe2d.groove_domain(Case(), opts)[0] is None
+
+
+@pytest.mark.slow
+def test_cell_and_full_width_agree_on_a_wide_web():
+    """A web 16 pitches wide: the full width (edge lands included) and the periodic cell
+    differ by the edges' share, within 2 pitch / width."""
+    c = Case().updated({"roller.groove_pitch": 2e-3, "roller.groove_width": 0.5e-3,
+                        "roller.groove_depth": 0.25e-3, "web.width": 0.032})
+    cell = fe2d.solve(c, grooves="cell")
+    full = fe2d.solve(c, grooves="full")
+    assert full["h_center"] == pytest.approx(cell["h_center"], rel=2 * 2e-3 / 0.032)
+
+
+# -- the bundled case ------------------------------------------------------------------------
+def test_base_grooved_case_answers_in_json(capsys):
+    assert main(["solve", "cases/base_grooved.toml", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["converged"] and out["land_fraction"] == pytest.approx(1 - 0.25 / 1.27)
+    assert out["h_center"] < 5e-6
+
+
+# -- sizing ---------------------------------------------------------------------------------
+def test_grooves_sizing_command(capsys, tmp_path):
+    """One design at 40 m/s (the smooth roller's mu there is below 0.02): grooved, it keeps
+    mu above 0.2; the JSON names it the best; the map is written as CSV and a chart."""
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--speed", "40",
+                 "--pitches", "1.27e-3", "--lands", "0.9", "--json", "--quiet",
+                 "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "base_grooves.png").stat().st_size > 10_000
+    assert len((tmp_path / "base_grooves.csv").read_text().splitlines()) == 2
+    out = json.loads(capsys.readouterr().out)
+    (d,) = out["designs"]
+    assert d["converged"] and d["feasible"] and d["mu"] > 0.2
+    assert d["land_fraction"] == pytest.approx(0.9)
+    assert out["best"]["40"]["pitch"] == pytest.approx(1.27e-3)
+
+
+def test_grooves_sizing_refuses_bad_lists(capsys):
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--lands", "1.5"]) == 2
+    assert "land fraction = 1.5" in capsys.readouterr().err
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "a,b"]) == 2
+    assert "comma-separated" in capsys.readouterr().err
+    assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "0"]) == 2
+    assert "groove pitch = 0.0" in capsys.readouterr().err
