@@ -51,6 +51,13 @@ SAFETY = 2.0
 QUANTITIES = ("mu", "h_center", "h_min")
 
 
+def _relative(estimate: float, value: float) -> float:
+    """|estimate/value - 1|; where nothing slides mu is about 0 and the difference is
+    measured against mu_cc instead (a relative error of 0 would be meaningless)."""
+    scale = abs(value) if abs(value) > 1e-3 else 1e-3
+    return abs(estimate - value) / scale
+
+
 def _friction(case: Case, h, w, resting=False, p=None, dpdx=None):
     return float(np.sum(friction_for(case, h, resting, p, dpdx)["mu"] * w))
 
@@ -71,7 +78,7 @@ def _closed_estimate(case: Case, r: Result, quantity: str):
         g, gw = np.polynomial.legendre.leggauss(200)
         s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
         hq = np.interp(s, x, h)
-        est = abs(_friction(case, np.maximum(hq + shift, 0.0), 0.5 * gw) / r["mu"] - 1.0)
+        est = _relative(_friction(case, np.maximum(hq + shift, 0.0), 0.5 * gw), r["mu"])
     elif quantity == "h_min":   # Eq. 21 has no exit constriction: compare with its 0.716
         est = abs((r["h_min"] + shift) * 0.716 / r["h_min"] - 1.0)
     else:
@@ -88,8 +95,8 @@ def _fe1d_estimate(case: Case, r: Result, quantity: str):
         h = d.wrap_h
         # edge leakage lowers a flying film; a web resting on its asperities (h ~ h_c) stays
         lowered = np.maximum(h * (1.0 - LEAK_CENTER / lam), np.minimum(h, r["h_c"]))
-        est = abs(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx) / r["mu"]
-                  - 1.0)
+        est = _relative(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx),
+                        r["mu"])
     else:
         est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam
     est *= SAFETY
