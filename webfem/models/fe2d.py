@@ -273,10 +273,35 @@ class FoilBearing2D:
                                          o.picard_max_iter, o.backtrack or None, o.anderson)
 
 
+def _continuation(problem_at, u, prm, opts, failed: dict, f: float, what: str):
+    """Newton along a factor f stepped geometrically (by 4) to 1 from ``f``: each step starts
+    from the last converged state on ``problem_at(f)``; a failed step is halved (in log f)."""
+    its, hist = failed["iterations"], list(failed["history"])
+    f_prev = None
+    while True:
+        v, info = problem_at(f)._plain_newton(u, prm, opts.tol, opts.max_iter)
+        its += info["iterations"]
+        hist += info["history"]
+        if info["converged"]:
+            u, f_prev = v, f
+            if f == 1.0:
+                info.update(iterations=its, history=hist,
+                            reason=info["reason"] + f" (after continuation in {what})")
+                return u, info
+            f = max(1.0, f / 4.0) if f > 1.0 else min(1.0, 4.0 * f)
+        else:
+            if f_prev is None or abs(np.log(f / f_prev)) < np.log(1.01):
+                info.update(iterations=its, history=hist,
+                            reason=f"{what} continuation failed at {f:.3g} x the {what}: "
+                                   + info["reason"])
+                return v, info
+            f = float(np.sqrt(f * f_prev))
+
+
 def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict):
     """Newton from a web 16 times wider (close to the 1-D solution it starts from) down to
     the true width. The meshes differ only by the scaling of Z, so a state carries over as it
-    is (the pressure as a function of Z / lambda); a failed step is halved (in log width)."""
+    is (the pressure as a function of Z / lambda)."""
     scaled = {}
 
     def at(f):
@@ -284,57 +309,21 @@ def _width_continuation(problem: FoilBearing2D, p1, u1, prm, opts, failed: dict)
             scaled[f] = FoilBearing2D(problem.X, problem.Z * f, order=problem.order)
         return scaled[f]
 
-    its, hist = failed["iterations"], list(failed["history"])
-    f_prev, f = None, 16.0
-    u = at(f).start_from_line(p1, u1, prm)
-    while True:
-        v, info = at(f)._plain_newton(u, prm, opts.tol, opts.max_iter)
-        its += info["iterations"]
-        hist += info["history"]
-        if info["converged"]:
-            u, f_prev = v, f
-            if f == 1.0:
-                info.update(iterations=its, history=hist,
-                            reason=info["reason"] + " (after continuation in width)")
-                return u, info
-            f = max(1.0, f / 4.0)
-        else:
-            if f_prev is None or f_prev / f < 1.01:
-                info.update(iterations=its, history=hist,
-                            reason=f"width continuation failed at {f:.3g} x the width: "
-                                   + info["reason"])
-                return v, info
-            f = float(np.sqrt(f * f_prev))
+    return _continuation(at, at(16.0).start_from_line(p1, u1, prm), prm, opts, failed, 16.0,
+                         "width")
 
 
 def _depth_continuation(problem: FoilBearing2D, u0, prm, opts, failed: dict):
     """Newton from shallow grooves (close to the smooth roller the start comes from) to the
-    true depth: the depth grows by 4 times per step from 1/64 of it; a failed step is
-    halved (in log depth)."""
+    true depth, from 1/64 of it."""
     g = problem.grooves
-    its, hist = failed["iterations"], list(failed["history"])
-    f_prev, f, u = None, 1.0 / 64.0, u0
-    while True:
-        step = FoilBearing2D(problem.X, problem.Z, problem.order,
+
+    def at(f):
+        return FoilBearing2D(problem.X, problem.Z, problem.order,
                              GroovePattern(g.pitch, g.width, g.depth * f), problem.web_edges,
                              problem.ambient_grooves)
-        v, info = step._plain_newton(u, prm, opts.tol, opts.max_iter)
-        its += info["iterations"]
-        hist += info["history"]
-        if info["converged"]:
-            u, f_prev = v, f
-            if f == 1.0:
-                info.update(iterations=its, history=hist,
-                            reason=info["reason"] + " (after continuation in groove depth)")
-                return u, info
-            f = min(1.0, 4.0 * f)
-        else:
-            if f_prev is None or f / f_prev < 1.01:
-                info.update(iterations=its, history=hist,
-                            reason=f"groove depth continuation failed at {f:.3g} x the "
-                                   "depth: " + info["reason"])
-                return v, info
-            f = float(np.sqrt(f * f_prev))
+
+    return _continuation(at, u0, prm, opts, failed, 1.0 / 64.0, "groove depth")
 
 
 def _transfer2d(coarse: FoilBearing2D, u, prm, fine: FoilBearing2D) -> np.ndarray:
