@@ -259,17 +259,9 @@ class FilmAssembler:
         self.T, self.width = T, width
         self.nP = nP = f.N
         nel, nq = f.dx.shape
-        # the web cell holding each film cell (by its centre) and the web functions there
-        left = wbasis.mesh.p[0, wbasis.mesh.t].min(axis=0)
-        order = np.argsort(left)
-        centre = f.x.mean(axis=1)
-        cell = order[np.clip(np.searchsorted(left[order], centre) - 1, 0, left.size - 1)]
-        wd = w.dofs[:, cell]                                        # (4, nel)
-        pts = np.arange(nel * nq).reshape(nel, nq)
+        # the web cell holding each film cell and the web functions there
+        wd, self.M_loc = T["M_dofs"], T["M_loc"]                    # (4, nel), (4, nel, nq)
         M = T["M"].tocsr()
-        self.M_loc = np.asarray(M[np.broadcast_to(pts, wd.shape[:1] + pts.shape).ravel(),
-                                  np.repeat(wd[:, :, None], nq, axis=2).ravel()]
-                                ).reshape(wd.shape[0], nel, nq)
         self.gx, self.gz = f.grad_c[0][:, 0], f.grad_c[0][:, 1]
         self.gw, self.hw = w.grad_c[0][:, 0], w.hess_c[0]
         # the width average's load on the web: -(1/width) M^T dx B0, constant

@@ -1,0 +1,88 @@
+"""The 1-D <-> 2-D transfer of webfem.fem.transfer against scikit-fem's general evaluation.
+
+``web_values`` evaluates the web's Hermite basis at the film's quadrature points cell by cell
+(instead of scikit-fem's ``probes``, which locates every point); ``tensor_interpolation``
+carries a film field to a finer tensor mesh (instead of ``probes`` on the quadrilaterals,
+seconds at 1e4 points). Both must agree with scikit-fem's own evaluation.
+"""
+
+import numpy as np
+import pytest
+from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
+
+from webfem.fem.mesh import graded_nodes, line_mesh
+from webfem.fem.transfer import (film_mesh, quadrature_matrices, tensor_interpolation,
+                                 web_values, width_nodes)
+
+
+def _hermite(X, x):
+    """The exact cubic Hermite functions (value, slope at each node) of the cells of X at x,
+    as a dense (points, 2 len(X)) matrix in the DOF order value, slope per node."""
+    k = np.clip(np.searchsorted(X, x) - 1, 0, X.size - 2)
+    L = X[k + 1] - X[k]
+    s = (x - X[k]) / L
+    out = np.zeros((x.size, 2 * X.size))
+    rows = np.arange(x.size)
+    out[rows, 2 * k] = 2 * s**3 - 3 * s**2 + 1
+    out[rows, 2 * k + 1] = (s**3 - 2 * s**2 + s) * L
+    out[rows, 2 * k + 2] = -2 * s**3 + 3 * s**2
+    out[rows, 2 * k + 3] = (s**3 - s**2) * L
+    return out
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_web_values_are_the_hermite_basis_at_the_film_points(order):
+    """M from web_values equals scikit-fem's probes, and both the exact Hermite functions.
+
+    The tolerance is 1e-6, not 1e-12: scikit-fem 12 builds the Hermite element as a global
+    element (monomials in the global x inverted per cell), whose values at |x| ~ 20 carry
+    rounding errors of ~1e-7 (measured: probes 5e-8, the cell-wise evaluation 7e-8 from
+    the exact 0.9647580015 on the base case mesh). An error in the cell or reference
+    coordinate is O(1) and fails it."""
+    X = graded_nodes(20.0, 30.0, level=0)
+    Z = width_nodes(4.0)
+    line = line_mesh(X)
+    wbasis = Basis(line, ElementLineHermite(), intorder=6)
+    fbasis = Basis(film_mesh(X, Z), ElementQuad2() if order == 2 else ElementQuad1(),
+                   intorder=4 if order == 2 else 3)
+    T = quadrature_matrices(fbasis, wbasis)
+    xq = T["x"]
+    probes = wbasis.probes(xq[None, :]).toarray()
+    exact = _hermite(X, xq)[:, _dof_order(wbasis, X)]
+    assert np.max(np.abs(T["M"].toarray() - probes)) < 1e-6
+    assert np.max(np.abs(T["M"].toarray() - exact)) < 1e-6
+    cell, dofs, values = web_values(fbasis, wbasis)
+    assert values.shape == (4,) + fbasis.dx.shape
+    assert np.all(line.p[0, line.t[0, cell]] <= np.asarray(fbasis.global_coordinates()[0])
+                  .min(axis=1) + 1e-12)
+
+
+def _dof_order(wbasis, X):
+    """Columns of :func:`_hermite` in the order of the basis's global DOFs."""
+    cols = np.empty(wbasis.N, dtype=int)
+    node = np.argsort(np.argsort(wbasis.mesh.p[0]))      # node index -> position in X
+    cols[wbasis.nodal_dofs[0]] = 2 * node
+    cols[wbasis.nodal_dofs[1]] = 2 * node + 1
+    return np.argsort(cols)
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_tensor_interpolation_is_exact_on_a_nested_mesh(order):
+    """A random Q1/Q2 field carried to a mesh with cells bisected in X and Z equals
+    scikit-fem's probes of it to rounding; on a mesh moved in X it interpolates."""
+    X = np.array([-3.0, -1.0, 0.0, 0.5, 2.0])
+    Z = np.array([0.0, 0.7, 1.5])
+    elem = ElementQuad2 if order == 2 else ElementQuad1
+    coarse = Basis(film_mesh(X, Z), elem())
+    u = np.random.default_rng(3).normal(size=coarse.N)
+    Xf = np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])]))
+    Zf = np.sort(np.concatenate([Z, [0.3]]))
+    fine = Basis(film_mesh(Xf, Zf), elem())
+    pts = fine.doflocs
+    want = coarse.probes(pts) @ u
+    got = tensor_interpolation(X, Z, order, coarse.doflocs, u, pts)
+    assert np.max(np.abs(got - want)) < 1e-12 * (1 + np.max(np.abs(want)))
+    # a field that is not in the space: not reproduced (the test can fail)
+    bent = u + 1e-3 * np.sin(7 * coarse.doflocs[0])
+    assert np.max(np.abs(tensor_interpolation(X, Z, order, coarse.doflocs, bent, pts)
+                         - want)) > 1e-5
