@@ -114,9 +114,12 @@ def test_display_factors_match_pint():
                                       (0.055, "length", "us", "in"),
                                       (4e-6, "thin", "us", "thou"),
                                       (101325.0, "pressure", "us", "psi"),
-                                      (1.27e-4, "torque", "us", "lbf*in")]:
+                                      (1.27e-4, "torque", "us", "lbf*in"),
+                                      (1.27e-3, "position", "us", "in"),
+                                      (1.27e-3, "position", "si", "mm"),
+                                      (101325.0, "pressure", "metric", "kPa")]:
         si = {"speed": "m/s", "tension": "N/m", "length": "m", "thin": "m",
-              "pressure": "Pa", "torque": "N*m"}[role]
+              "pressure": "Pa", "torque": "N*m", "position": "m"}[role]
         expected = ureg.Quantity(value, si).to(unit).magnitude
         assert convert(value, role, system) == pytest.approx(expected, rel=1e-12)
     assert display(20.0, "speed", "metric") == "1200 m/min"

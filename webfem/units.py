@@ -5,7 +5,10 @@ be given as text with a unit, ``"1200 m/min"``, ``"0.5 pli"``, ``"4 um"``, ``"2.
 ``"60 deg"``, ``"1.27e-4 N*m"``, which :func:`to_si` reads with pint and converts to the
 key's SI unit. Plain numbers never reach this module, so pint is imported only when a
 string is read. :func:`display` formats SI values in one of :data:`SYSTEMS` for printing,
-with fixed factors (no pint).
+with fixed factors (no pint); :func:`convert` and :func:`unit_label` serve charts, and
+:func:`table_in_units` turns a table of SI numbers into one in metric or US units whose
+column names end in their unit (``h_center_mil``): the one place where webfem converts what
+it writes. :data:`ROLES` says what each quantity webfem writes measures.
 
 Besides pint's units: ``pli`` (pound-force per linear inch, the US unit of web tension),
 ``fpm`` (feet per minute), and ``mil`` is a thousandth of an inch (pint's ``mil`` is an
@@ -33,8 +36,8 @@ import re
 
 from .errors import InputError
 
-__all__ = ["SYSTEMS", "KINDS", "to_si", "examples", "kind_of", "display", "convert",
-           "unit_label"]
+__all__ = ["SYSTEMS", "KINDS", "ROLES", "to_si", "examples", "kind_of", "display", "convert",
+           "unit_label", "column_name", "table_in_units"]
 
 #: The display systems of ``--units``.
 SYSTEMS = ("si", "metric", "us")
@@ -174,6 +177,8 @@ _DISPLAY = {
     "thin": {"si": ("um", 1e-6), "metric": ("um", 1e-6), "us": ("mil", 1e-3 * _INCH)},
     "speed": {"si": ("m/s", 1.0), "metric": ("m/min", 1 / 60), "us": ("ft/min", 0.3048 / 60)},
     "tension": {"si": ("N/m", 1.0), "metric": ("N/m", 1.0), "us": ("pli", _LBF / _INCH)},
+    # coordinates on the film and small lengths (grooves): mm even in SI, as drawn
+    "position": {"si": ("mm", 1e-3), "metric": ("mm", 1e-3), "us": ("in", _INCH)},
     "pressure": {"si": ("Pa", 1.0), "metric": ("kPa", 1e3), "us": ("psi", _LBF / _INCH**2)},
     "torque": {"si": ("N m", 1.0), "metric": ("N m", 1.0), "us": ("lbf in", _LBF * _INCH)},
     "angle": {s: ("deg", 1.0) for s in SYSTEMS},
@@ -200,10 +205,88 @@ def convert(value: float, role: str, system: str) -> float:
 
 
 def display(value: float, role: str, system: str, digits: int = 4) -> str:
-    """``value`` (SI) as text in ``system``'s unit for ``role``, ``digits`` significant.
+    """``value`` (SI) as text in ``system``'s unit for ``role``, ``digits`` significant
+    (more for a large whole number, never ``1.24e+03``).
 
     >>> display(0.055, "length", "metric"), display(80.0, "tension", "us")
     ('55 mm', '0.4568 pli')
+    >>> display(6.3, "speed", "us", 3)
+    '1240 ft/min'
     """
     label = unit_label(role, system)
-    return f"{convert(value, role, system):.{digits}g} {label}"
+    shown = convert(value, role, system)
+    if math.isfinite(shown) and 1.0 <= abs(shown) < 1e15:
+        digits = max(digits, math.floor(math.log10(abs(shown))) + 1)
+    return f"{shown:.{digits}g} {label}"
+
+
+#: What each dimensional quantity webfem writes measures (a role of :func:`convert`), by
+#: name: summary keys, case keys and the columns of the tables it writes. Quantities not
+#: listed are written as they are: no unit (mu, shares, lambda), a count, a time in s, a
+#: scaled number (residual, eps), or a unit the trade keeps in SI (moduli, viscosity).
+ROLES = {
+    # summary keys (webfem.result.Summary)
+    **dict.fromkeys(("h_center", "h_inlet", "h_outlet", "h_min", "h_c", "sigma"), "thin"),
+    "x_min": "position",
+    **dict.fromkeys(("delta_T", "T_eff", "delta_T_required", "delta_T_available"),
+                    "tension"),
+    "U": "speed", "U_slide": "speed", "bending_stiffness_used": "torque",
+    # case keys
+    **dict.fromkeys(("roller.radius", "roller.diameter", "web.width"), "length"),
+    **dict.fromkeys(("roller.groove_pitch", "roller.groove_width", "roller.groove_depth"),
+                    "position"),
+    **dict.fromkeys(("roller.roughness", "web.roughness", "web.thickness",
+                     "air.mean_free_path"), "thin"),
+    **dict.fromkeys(("roller.speed", "web.speed", "friction.speed_constant"), "speed"),
+    "web.tension": "tension", "wrap.angle_deg": "angle", "air.ambient_pressure": "pressure",
+    **dict.fromkeys(("roller.drag_torque", "web.bending_stiffness"), "torque"),
+    # groove designs (webfem.groove_sizing.GrooveDesign): speed, groove pitch, width, depth
+    "speed": "speed", **dict.fromkeys(("pitch", "width", "depth"), "position"),
+    # calibration estimates (webfem.calibrate.Calibration; sigma as above)
+    "speed_constant": "speed",
+}
+
+
+def column_name(name: str, role: str | None, system: str) -> str:
+    """A table column's name in ``system``: ``name`` itself in SI or without a role (the
+    SI files' names are a contract), else ``name_UNIT`` with ``/`` spelt ``_per_`` and
+    spaces ``_``, so every column of a converted table names its unit.
+
+    >>> column_name("h_center", "thin", "us"), column_name("value", "speed", "metric")
+    ('h_center_mil', 'value_m_per_min')
+    """
+    if system == "si" or role is None:
+        return name
+    unit = unit_label(role, system).replace("/", "_per_").replace(" ", "_")
+    return f"{name}_{unit}"
+
+
+def table_in_units(rows, keys, system: str, roles: dict | None = None
+                   ) -> tuple[list[str], list[dict]]:
+    """Rows of SI numbers (``{column: value}``) as column names and rows in ``system``.
+
+    ``roles`` adds to or overrides :data:`ROLES` for this table (e.g. ``{"value":
+    "speed"}`` for a sweep over roller speed); ``None`` as a role leaves a column as it is.
+    In SI the names and rows come back unchanged. Otherwise each column with a role is
+    converted (numbers only: empty cells, text and booleans stay) and renamed by
+    :func:`column_name`; the others keep their name and values.
+
+    >>> table_in_units([{"mu": 0.2, "h_min": 4.5e-6}], ["mu", "h_min"], "metric")
+    (['mu', 'h_min_um'], [{'mu': 0.2, 'h_min_um': 4.5}])
+    """
+    _check_system(system)
+    keys = list(keys)
+    if system == "si":
+        return keys, [dict(r) for r in rows]
+    role_of = {**ROLES, **(roles or {})}
+    names = {k: column_name(k, role_of.get(k), system) for k in keys}
+    out = []
+    for row in rows:
+        new = {}
+        for k in keys:
+            v, role = row.get(k), role_of.get(k)
+            if role is not None and isinstance(v, (int, float)) and not isinstance(v, bool):
+                v = convert(float(v), role, system)
+            new[names[k]] = v
+        out.append(new)
+    return [names[k] for k in keys], out

@@ -6,8 +6,9 @@ import sys
 from pathlib import Path
 
 from ..calibrate import calibrate, read_measurements
-from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
-                     options_epilog, output_folder, print_json)
+from ..units import ROLES, convert, display, unit_label
+from .common import (HELP_FORMATTER, add_case_arguments, add_units_argument, case_from,
+                     model_options, options_epilog, output_folder, print_json)
 
 
 def add_parser(subparsers) -> None:
@@ -21,13 +22,22 @@ def add_parser(subparsers) -> None:
     p.add_argument("--json", action="store_true",
                    help="estimates, errors, residuals and notes as JSON")
     p.add_argument("--out", metavar="DIR", help="write the measured-against-predicted chart")
+    add_units_argument(p)
 
 
-def _pm(fit, name: str) -> str:
-    value, half, se = fit.estimates[name], fit.ci95[name], fit.stderr[name]
+def _pm(fit, name: str, units: str = "si") -> str:
+    """An estimate with its 95 % interval and standard error, in ``units`` when it has a
+    unit (speed_constant, sigma)."""
+    role = ROLES.get(name)
+    unit = f" {unit_label(role, units)}" if role else ""
+
+    def shown(v):
+        return v if role is None or v is None else convert(v, role, units)
+
+    value, half, se = (shown(d[name]) for d in (fit.estimates, fit.ci95, fit.stderr))
     if half is None:
-        return f"{value:.6g} (not identified by these data; see the note)"
-    return f"{value:.6g} +- {half:.3g} (95 %), std. error {se:.3g}"
+        return f"{value:.6g}{unit} (not identified by these data; see the note)"
+    return f"{value:.6g} +- {half:.3g}{unit} (95 %), std. error {se:.3g}{unit}"
 
 
 def run(args) -> int:
@@ -41,12 +51,17 @@ def run(args) -> int:
     else:
         print(f"webfem calibrate ({fit.model}, {len(rows)} rows of {fit.measured}):")
         for name in fit.estimates:
-            print(f"  {name:15s} = {_pm(fit, name)}")
-        print(f"  residual rms {fit.rms:.4g}, {fit.dof} degrees of freedom")
+            print(f"  {name:15s} = {_pm(fit, name, args.units)}")
+        if fit.measured == "delta_T":   # the residuals are tension differences
+            rms = display(fit.rms, "tension", args.units)
+        else:
+            rms = f"{fit.rms:.4g}"
+        print(f"  residual rms {rms}, {fit.dof} degrees of freedom")
         for note in fit.notes:
             print(f"  note: {note}")
     if chart_dir:
         from ..io.charts import calibration_chart
-        path = calibration_chart(fit, chart_dir / f"{Path(args.data).stem}_calibration.png")
+        path = calibration_chart(fit, chart_dir / f"{Path(args.data).stem}_calibration.png",
+                                 units=args.units)
         print(f"wrote {path}", file=sys.stderr)
     return 0 if fit.converged else 3

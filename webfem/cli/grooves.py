@@ -9,8 +9,10 @@ from pathlib import Path
 
 from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITCHES,
                              best_designs, groove_map)
+from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
-                     case_from, model_options, output_folder, print_json, speed_value)
+                     add_units_argument, case_from, model_options, output_folder, print_json,
+                     speed_value)
 
 
 def _floats(text: str) -> list[float]:
@@ -47,7 +49,10 @@ def add_parser(subparsers) -> None:
     p.add_argument("--depths", default=f"{DEFAULT_DEPTH:g}",
                    help=f"groove depths [m], comma-separated (default {DEFAULT_DEPTH:g})")
     p.add_argument("--json", action="store_true", help="the designs as JSON (SI units)")
-    p.add_argument("--out", metavar="DIR", help="also write the map as CSV and a chart (PNG) into DIR")
+    p.add_argument("--out", metavar="DIR", help="also write the map as CSV (SI; with --units "
+                                                "metric or us also a converted copy) and a "
+                                                "chart (PNG) into DIR")
+    add_units_argument(p)
     add_quiet_argument(p)
 
 
@@ -70,30 +75,42 @@ def run(args) -> int:
                 w.writerow(d.to_dict())
         print(f"wrote {path}", file=sys.stderr)
         from ..io.charts import groove_chart
+        from ..io.tables import write_in_units
 
+        copy = write_in_units([d.to_dict() for d in designs], path, args.units)
+        if copy is not None:
+            print(f"wrote {copy}", file=sys.stderr)
         chart = groove_chart(designs, args.mu_min, folder / f"{Path(args.case).stem}_grooves.png",
-                             best)
+                             best, units=args.units)
         print(f"wrote {chart}", file=sys.stderr)
     if args.json:
         print_json({"mu_min": args.mu_min, "designs": [d.to_dict() for d in designs],
                     "best": {f"{s:g}": (b.to_dict() if b else None) for s, b in best.items()}})
         return 0 if all(best.values()) else 4
+    units = args.units
+    size, thin = unit_label("position", units), unit_label("thin", units)
+
+    def mm(value):   # a groove size in the display unit (mm, or in for us)
+        return convert(value, "position", units)
+
     for speed, b in best.items():
-        print(f"roller speed {speed:g} m/s, mu_min {args.mu_min:g} (* feasible):")
-        print("  pitch mm  groove mm  depth mm  land %      mu   h_center um  contact share")
+        print(f"roller speed {display(speed, 'speed', units)}, mu_min {args.mu_min:g} "
+              "(* feasible):")
+        print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %      mu   "
+              f"h_center {thin:2}  contact share")
         for d in designs:
             if d.speed != speed:
                 continue
             mu = f"{d.mu:7.4f}" if d.converged else "  no answer"
-            hc = f"{d.h_center * 1e6:11.3g}" if d.converged else ""
+            hc = f"{convert(d.h_center, 'thin', units):11.3g}" if d.converged else ""
             cs = f"{d.contact_share:14.3f}" if d.converged else ""
             mark = "*" if d.feasible else " "
-            print(f"{mark} {d.pitch * 1e3:8.3g}  {d.width * 1e3:9.3g}  {d.depth * 1e3:8.3g}  "
+            print(f"{mark} {mm(d.pitch):8.3g}  {mm(d.width):9.3g}  {mm(d.depth):8.3g}  "
                   f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{cs}")
         if b is None:
             print("  no design keeps mu >= mu_min: finer pitches or narrower lands")
         else:
-            print(f"  best: pitch {b.pitch * 1e3:.3g} mm, groove {b.width * 1e3:.3g} mm wide "
-                  f"and {b.depth * 1e3:.3g} mm deep: land {100 * b.land_fraction:.0f} %, "
-                  f"mu {b.mu:.3f}")
+            print(f"  best: pitch {mm(b.pitch):.3g} {size}, groove {mm(b.width):.3g} {size} "
+                  f"wide and {mm(b.depth):.3g} {size} deep: land {100 * b.land_fraction:.0f} "
+                  f"%, mu {b.mu:.3f}")
     return 0 if all(best.values()) else 4

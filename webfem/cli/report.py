@@ -6,8 +6,9 @@ import sys
 from pathlib import Path
 
 from ..api import solve
-from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
-                     options_epilog, output_folder)
+from .common import (HELP_FORMATTER, Ticker, add_case_arguments, add_quiet_argument,
+                     add_units_argument, case_from, model_options, options_epilog,
+                     output_folder)
 
 
 def add_parser(subparsers) -> None:
@@ -19,6 +20,8 @@ def add_parser(subparsers) -> None:
         formatter_class=HELP_FORMATTER, epilog=options_epilog())
     add_case_arguments(p)
     p.add_argument("--out", required=True, metavar="DIR", help="output folder for the page")
+    add_units_argument(p)
+    add_quiet_argument(p)
 
 
 def run(args) -> int:
@@ -30,9 +33,11 @@ def run(args) -> int:
     stem = f"{Path(args.case).stem}_{args.model}"
     # a ConvergenceError reaches main (exit 3): a report of an unconverged solve would be
     # shared as if it were an answer
-    result = solve(case, model=args.model, options=options)
+    with Ticker(f"solving with {args.model}", args.quiet):
+        result = solve(case, model=args.model, options=options)
     path = write_report(result, folder, name=f"{stem}.html",
-                        title=f"webfem report: {Path(args.case).stem} ({args.model})")
+                        title=f"webfem report: {Path(args.case).stem} ({args.model})",
+                        units=args.units)
     print(f"wrote {path}")
     if result.summary.warnings:
         print(f"webfem: {len(result.summary.warnings)} warning(s), listed in the page",

@@ -23,8 +23,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--vtu", metavar="DIR",
                    help="write VTU files of the web (and film, fe2d) into DIR for ParaView")
     p.add_argument("--plot", action="store_true",
-                   help="render PNG pictures of p and h of the film (fe2d) with pyvista, into "
-                        "the --vtu DIR (or the current folder)")
+                   help="draw the film (pressure, gap, friction; fe2d) as a PNG in --units, "
+                        "into the --vtu DIR (or the current folder)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys: model, h_center, h_inlet, h_outlet, h_min, "
                         "mu, delta_T, regime, lambda, beta, eq21_valid, converged, iterations, "
@@ -72,6 +72,6 @@ def run(args) -> int:
                              f"{result.get('model_used', args.model)}, which has no 2-D film "
                              "to draw: use --model fe2d")
         from ..io.pictures import film_pictures
-        for path in film_pictures(result, pictures, stem):
+        for path in film_pictures(result, pictures, stem, units=args.units):
             print(f"wrote {path}", file=sys.stderr)
     return 0

@@ -8,8 +8,8 @@ from pathlib import Path
 
 from ..case import load_sweep
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments,
-                     add_quiet_argument, model_options, options_epilog, output_folder,
-                     overrides, positive_int)
+                     add_quiet_argument, add_units_argument, model_options, options_epilog,
+                     output_folder, overrides, positive_int)
 
 
 def add_parser(subparsers) -> None:
@@ -18,7 +18,11 @@ def add_parser(subparsers) -> None:
                                             "of the same sweep resumes where it stopped",
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
     add_case_arguments(p, default_model=DEFAULT_MODEL)
-    p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv and .png")
+    p.add_argument("--out", required=True, help="output folder for CASE_MODEL.csv (SI) and "
+                                                "CASE_MODEL.png (and CASE_MODEL_us.csv with "
+                                                "--units us, CASE_MODEL_metric.csv with "
+                                                "--units metric)")
+    add_units_argument(p)
     add_quiet_argument(p)
     p.add_argument("--vtu", metavar="DIR",
                    help="also write VTU files per point and a .pvd collection per series")
@@ -37,7 +41,7 @@ def add_parser(subparsers) -> None:
 def run(args) -> int:
     from ..api import sweep as sweep_in_memory
     from ..io.charts import sweep_chart
-    from ..io.tables import sweep_rows
+    from ..io.tables import ROW_KEYS, sweep_roles, sweep_rows, write_in_units
     from ..io.vtu import SweepVtu
     from ..sweeps import run as run_sweep
 
@@ -61,11 +65,17 @@ def run(args) -> int:
     reference = None
     if args.model != "closed-form":   # the paper's model beside the field solution
         reference = sweep_rows(sweep_in_memory(spec, "closed-form"), spec.parameter)
+    # the CSV above is the sweep's store and stays SI (a re-run with other --units resumes
+    # it); the units asked for get a copy beside it
+    units_csv = write_in_units(rows, csv_path, args.units, ROW_KEYS,
+                               sweep_roles(spec.parameter))
     png_path = sweep_chart(rows, out / f"{stem}.png",
                            title=f"{Path(args.case).stem}: {args.model}"
                            + (" (thin: closed form, Eq. 21)" if reference else ""),
-                           reference=reference)
-    print(f"wrote {csv_path}\nwrote {png_path}")
+                           reference=reference, units=args.units)
+    for path in (csv_path, units_csv, png_path):
+        if path is not None:
+            print(f"wrote {path}")
     failed = [r for r in rows if not r["converged"]]
     if failed:
         print(f"webfem: {len(failed)} of {len(rows)} points did not converge (see the CSV)",

@@ -66,6 +66,6 @@ def run(args) -> int:
                   for m in models}
         path = traction_loss_chart(rows, curves, out.mu_min,
                                    chart_dir / f"{Path(args.case).stem}_traction_loss.png",
-                                   CHART_PARAMETERS)
+                                   CHART_PARAMETERS, units=args.units)
         print(f"wrote {path}", file=sys.stderr)
     return 0 if out.speed is not None else 4

@@ -21,6 +21,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..progress import report
+
 __all__ = ["NewtonResult", "newton", "solve_linear", "PatternSolver", "SOLVER"]
 
 
@@ -128,6 +130,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     history = [norm]
     if np.isfinite(norm):
         tol = max(tol, rtol * norm)
+    report("newton", 0, norm, tol)
     for it in range(1, max_iter + 1):
         if not np.isfinite(norm):
             return NewtonResult(u, False, it - 1, norm, history, "residual not finite")
@@ -153,6 +156,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                 return NewtonResult(u, False, it, norm, history, "line search failed")
         u, r, norm = trial, r_trial, n_trial
         history.append(norm)
+        report("newton", it, norm, tol)
         if monitor:
             monitor(it, norm)
         if alpha == 1.0 and np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free]))):

@@ -19,6 +19,8 @@ from typing import Callable
 
 import numpy as np
 
+from ..progress import report
+
 __all__ = ["PicardResult", "picard", "frozen_coefficient_picard"]
 
 
@@ -78,6 +80,7 @@ def picard(G: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, omega: float =
                 return PicardResult(x, False, it - 1, np.inf, history, omegas,
                                     f"diverged: map failed ({err})")
         history.append(size)
+        report("picard", it, size, tol)
         if monitor:
             monitor(it, size)
         if backtrack and accepted is not None and not size <= backtrack * accepted[1]:

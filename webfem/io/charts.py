@@ -1,4 +1,9 @@
-"""Charts in the style of the paper's Figs. 10-13 (matplotlib, off screen)."""
+"""Charts in the style of the paper's Figs. 10-13 (matplotlib, off screen).
+
+Every chart takes ``units`` (:data:`webfem.units.SYSTEMS`, default ``"si"``): the data stay
+SI and are converted only as they are drawn, with the axis labels naming the unit
+(:func:`webfem.units.convert`, :func:`webfem.units.unit_label`).
+"""
 
 from __future__ import annotations
 
@@ -12,9 +17,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from ..files import replacing
+from ..units import ROLES, convert, unit_label
 
 __all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart", "needs_markers",
-           "PARAMETER_LABELS"]
+           "PARAMETER_LABELS", "parameter_label", "display_values"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
@@ -29,12 +35,38 @@ def _f(row: dict, key: str) -> float:
         return np.nan
 
 
+#: What the parameters a sweep usually runs over are called on an axis (the unit follows).
+_PARAMETER_NAMES = {"roller.speed": "roller speed U_r", "web.speed": "web speed U_w",
+                    "web.tension": "web tension T", "wrap.angle_deg": "wrap angle B",
+                    "web.width": "web width L", "roller.radius": "roller radius R",
+                    "web.roughness": "web roughness sigma_w",
+                    "roller.roughness": "roller roughness sigma_r"}
+
+
+def display_values(values, role: str | None, units: str) -> np.ndarray:
+    """SI ``values`` (None: NaN) as drawn in ``units``: in the display unit of ``role``
+    (:data:`webfem.units.ROLES`), or as they are without a role."""
+    a = np.array([np.nan if v is None else v for v in np.atleast_1d(values)], float)
+    return a if role is None else convert(a, role, units)
+
+
+def parameter_label(key: str, units: str = "si") -> str:
+    """An axis label for case key ``key`` in ``units``, e.g. ``roller speed U_r [ft/min]``
+    (the key itself, with its unit when it has one, for keys without a name here)."""
+    name = _PARAMETER_NAMES.get(key, key)
+    role = ROLES.get(key)
+    return f"{name} [{unit_label(role, units)}]" if role else name
+
+
 #: Axis labels of the parameters a sweep usually runs over (SI units).
-PARAMETER_LABELS = {"roller.speed": "roller speed U_r [m/s]", "web.speed": "web speed U_w [m/s]",
-                    "web.tension": "web tension T [N/m]", "wrap.angle_deg": "wrap angle B [deg]",
-                    "web.width": "web width L [m]", "roller.radius": "roller radius R [m]",
-                    "web.roughness": "web roughness sigma_w [m]",
-                    "roller.roughness": "roller roughness sigma_r [m]"}
+PARAMETER_LABELS = {key: parameter_label(key) for key in _PARAMETER_NAMES}
+
+
+def _level_text(value: float) -> str:
+    """A regime level as labelled: two decimals (um), three significant digits below 1
+    (mil), so close levels stay apart in every unit."""
+    decimals = max(2, 2 - int(np.floor(np.log10(abs(value))))) if value else 2
+    return f"{value:.{decimals}f}"
 
 
 def needs_markers(values) -> bool:
@@ -49,8 +81,8 @@ def needs_markers(values) -> bool:
                                 rtol=0.05))
 
 
-def _level_labels(ax, levels: dict) -> None:
-    """Draw the regime levels on the gap axis ``ax``: ``levels`` maps a gap [um] to
+def _level_labels(ax, levels: dict, unit: str = "um") -> None:
+    """Draw the regime levels on the gap axis ``ax``: ``levels`` maps a gap [``unit``] to
     ``(name, series labels)``. Each distinct value gets one label at the axis' right end,
     naming the series when not all share it; labels closer than a text line are pushed
     apart (with a thin leader) so none prints on top of another."""
@@ -65,7 +97,7 @@ def _level_labels(ax, levels: dict) -> None:
         y = to_px((0.0, level))[1]
         at = max(y, placed[-1][2] + step) if placed else y
         whose = "" if who == everyone else f" ({', '.join(sorted(who))})"
-        placed.append((level, f"{name} = {level:.2f} um{whose}", at, y))
+        placed.append((level, f"{name} = {_level_text(level)} {unit}{whose}", at, y))
     for level, text, at, y in placed:
         ax.annotate(text, (1.0, level), xycoords=("axes fraction", "data"),
                     xytext=(-3, 1.5 + (at - y) * 72.0 / fig.dpi), textcoords="offset points",
@@ -75,7 +107,7 @@ def _level_labels(ax, levels: dict) -> None:
 
 
 def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
-                reference: list[dict] | None = None) -> Path:
+                reference: list[dict] | None = None, units: str = "si") -> Path:
     """mu against the swept parameter per series, with the gaps (dashed) on a second axis.
 
     ``reference``: rows of another model (the closed form beside an FE sweep), drawn thin in
@@ -85,19 +117,30 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
 
     The regime boundaries h = h_c and h = 3 sigma are grey lines on the gap axis, labelled
     there, one label per distinct value (close values share one). The legend sits outside
-    the axes, on the right.
+    the axes, on the right. ``units``: the swept parameter and the gaps are drawn in that
+    system's units.
     """
     series = list(dict.fromkeys(r["series"] for r in rows))
+    parameter = rows[0]["parameter"]
+    role = ROLES.get(parameter)
+
+    def xs(sel):
+        return display_values([r["value"] for r in sel], role, units)
+
+    def gaps(sel, key, ok=None):
+        h = display_values([_f(r, key) for r in sel], "thin", units)
+        return h if ok is None else np.where(ok, h, np.nan)
+
     fig, ax = plt.subplots(figsize=(9.0, 5.0), layout="constrained")
     ax2 = ax.twinx()
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    marker = "o" if needs_markers([_f(r, "value") for r in rows]) else None
+    marker = "o" if needs_markers(xs(rows)) else None
     levels = {}
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
         good = [r for r in sel if r.get("converged") is True]
         ok = [r.get("converged") is True for r in sel]
-        U = [r["value"] for r in sel]
+        U = xs(sel)
         colour = colours[i % len(colours)]
         model = sel[0]["model"]
         ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
@@ -106,30 +149,28 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
                 else f"mu ({model})")
         bad = [r for r, k in zip(sel, ok) if not k]
         if bad:
-            ax.plot([r["value"] for r in bad], [0.0] * len(bad), "x", color=colour,
+            ax.plot(xs(bad), [0.0] * len(bad), "x", color=colour,
                     label="not converged", clip_on=False)
         for key, name, dash in _GAP_STYLES:
-            ax2.plot(U, [_f(r, key) * 1e6 if k else np.nan for r, k in zip(sel, ok)],
-                     linestyle=dash, color=colour, lw=1.1, marker=marker, ms=2.0,
-                     )
+            ax2.plot(U, gaps(sel, key, ok), linestyle=dash, color=colour, lw=1.1, marker=marker,
+                     ms=2.0)
         ref = [r for r in reference or [] if r["series"] == label]
         if ref:
             rmodel = ref[0]["model"]
-            rU = [r["value"] for r in ref]
+            rU = xs(ref)
             ax.plot(rU, [_f(r, "mu") for r in ref], "-", color=colour, lw=0.8, alpha=0.7,
                     label=f"{label}: mu ({rmodel})")
             for key, name, dash in _GAP_STYLES:
-                ax2.plot(rU, [_f(r, key) * 1e6 for r in ref], linestyle=dash, color=colour,
-                         lw=0.6, alpha=0.7)
+                ax2.plot(rU, gaps(ref, key), linestyle=dash, color=colour, lw=0.6, alpha=0.7)
         for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
             for r in good:
                 if np.isfinite(_f(r, key)):
-                    value = round(factor * _f(r, key) * 1e6, 2)
+                    value = float(_level_text(factor * float(gaps([r], key)[0])))
                     levels.setdefault(value, (name, set()))[1].add(str(label))
-    parameter = rows[0]["parameter"]
-    ax.set_xlabel(PARAMETER_LABELS.get(parameter, parameter))
+    ax.set_xlabel(parameter_label(parameter, units))
     ax.set_ylabel("friction coefficient mu [-] (solid)")
-    ax2.set_ylabel("web spacing h [um] (dashed; grey: regime levels)")
+    thin = unit_label("thin", units)
+    ax2.set_ylabel(f"web spacing h [{thin}] (dashed; grey: regime levels)")
     mu = [_f(r, "mu") for r in rows if r.get("converged") is True]
     ax.set_ylim(0.0, max([0.4] + [1.1 * m for m in mu if np.isfinite(m)]))
     ax2.set_ylim(0.0, None)
@@ -142,42 +183,44 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
               for m in models for _, name, dash in _GAP_STYLES]
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
                loc="outside right upper")
-    _level_labels(ax2, levels)
+    _level_labels(ax2, levels, thin)
     if title:
         ax.set_title(title, fontsize=10)
     return _save(fig, path)
 
 
 def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
-                        parameters) -> Path:
+                        parameters, units: str = "si") -> Path:
     """Panels: mu against roller speed with the threshold (the traction-loss speed is where
     each curve falls through it), then the traction-loss speed against each parameter, one
     line per model.
 
     ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss); ``mu_curves``:
     model -> (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
-    :data:`webfem.traction.CHART_PARAMETERS`.
+    :data:`webfem.traction.CHART_PARAMETERS` (a key of :data:`webfem.units.ROLES` is drawn
+    in ``units``, with :func:`parameter_label`; others as they are, with their label).
     """
     parameters = list(parameters)
+    speed = unit_label("speed", units)
     fig, axes = plt.subplots(1, 1 + len(parameters), figsize=(3.4 * (1 + len(parameters)), 3.8),
                              constrained_layout=True, squeeze=False)
     axes = axes[0]
     ax = axes[0]
     for model, (u, mu) in mu_curves.items():
-        ax.plot(u, mu, label=model)
+        ax.plot(display_values(u, "speed", units), mu, label=model)
     ax.axhline(mu_min, color="k", lw=0.8, ls="--", label=f"mu_min = {mu_min:g}")
-    ax.set_xlabel("roller speed U_r [m/s]")
+    ax.set_xlabel(f"roller speed U_r [{speed}]")
     ax.set_ylabel("mu [-]")
     ax.set_title("base case", fontsize=9)
     ax.legend(fontsize=7, loc="best")
     for ax, (key, label, *_) in zip(axes[1:], parameters):
         for model in dict.fromkeys(r["model"] for r in rows):
             sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
-            ax.plot([r["value"] for r in sel],
-                    [np.nan if r["speed"] is None else r["speed"] for r in sel], "o-",
+            ax.plot(display_values([r["value"] for r in sel], ROLES.get(key), units),
+                    display_values([r["speed"] for r in sel], "speed", units), "o-",
                     label=model, ms=3)
-        ax.set_xlabel(label)
-        ax.set_ylabel("traction-loss speed [m/s]")
+        ax.set_xlabel(parameter_label(key, units) if key in ROLES else label)
+        ax.set_ylabel(f"traction-loss speed [{speed}]")
         if key == "web.width" and any(r["model"] == "fe1d" for r in rows):
             ax.annotate("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
                         "the width never enters it", (0.03, 0.97), xycoords="axes fraction",
@@ -204,45 +247,61 @@ def save_figure(fig, path, dpi: int = 110) -> Path:
 _save = save_figure
 
 
-def _pm(value, half) -> str:
-    """``value +- half`` or, when the data cannot bound it, the value alone."""
-    return f"{value:.4g} +- {half:.2g}" if half is not None else f"{value:.4g} (not identified)"
+def _pm(value, half, role=None, units="si") -> str:
+    """``value +- half`` (in ``units`` with a ``role``) or, when the data cannot bound it,
+    the value alone."""
+    unit = f" {unit_label(role, units)}" if role else ""
+    if role:
+        value, half = (None if v is None else convert(v, role, units) for v in (value, half))
+    return (f"{value:.4g} +- {half:.2g}{unit}" if half is not None
+            else f"{value:.4g}{unit} (not identified)")
 
 
-def calibration_chart(fit: dict, path) -> Path:
+def calibration_chart(fit: dict, path, units: str = "si") -> Path:
     """Measured against predicted (with the 1:1 line) and the residuals against roller speed.
 
-    ``fit``: a :class:`webfem.calibrate.Calibration` (or a mapping with its keys).
+    ``fit``: a :class:`webfem.calibrate.Calibration` (or a mapping with its keys);
+    ``units``: of the tension difference and the speed.
     """
-    obs, pred = np.asarray(fit["observed"]), np.asarray(fit["predicted"])
-    speed = [c.roller.speed for c in fit["cases"]]
+    tension = fit["measured"] == "delta_T"
+    role = "tension" if tension else None
+    obs = display_values(fit["observed"], role, units)
+    pred = display_values(fit["predicted"], role, units)
+    speed = display_values([c.roller.speed for c in fit["cases"]], "speed", units)
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
     a.plot(obs, pred, "o", ms=4)
     lim = [min(obs.min(), pred.min()), max(obs.max(), pred.max())]
     a.plot(lim, lim, "k-", lw=0.8)
-    name = "delta_T [N/m]" if fit["measured"] == "delta_T" else "mu [-]"
+    name = f"delta_T [{unit_label('tension', units)}]" if tension else "mu [-]"
     a.set_xlabel(f"measured {name}")
     a.set_ylabel(f"predicted {name} ({fit['model']})")
-    est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k])}" for k, v in fit["estimates"].items()
-                    if v is not None)
+    est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k], ROLES.get(k), units)}"
+                    for k, v in fit["estimates"].items() if v is not None)
     a.set_title(est + " (95 %)", fontsize=8)
-    b.plot(speed, fit["residuals"], "o", ms=4)
+    b.plot(speed, display_values(fit["residuals"], role, units), "o", ms=4)
     b.axhline(0.0, color="k", lw=0.8)
-    b.set_xlabel("roller speed [m/s]")
+    b.set_xlabel(f"roller speed [{unit_label('speed', units)}]")
     b.set_ylabel(f"predicted - measured {name}")
-    b.set_title(f"rms {fit['rms']:.3g}, {fit['dof']} degrees of freedom", fontsize=8)
+    rms = f"{float(display_values(fit['rms'], role, units)[0]):.3g}" + (
+        f" {unit_label(role, units)}" if role else "")
+    b.set_title(f"rms {rms}, {fit['dof']} degrees of freedom", fontsize=8)
     for ax in (a, b):
         ax.grid(True, alpha=0.3)
     return _save(fig, path)
 
 
-def groove_chart(designs, mu_min: float, path, best: dict | None = None) -> Path:
+def groove_chart(designs, mu_min: float, path, best: dict | None = None,
+                 units: str = "si") -> Path:
     """Groove sizing map: mu against land fraction, one line per groove pitch (and depth),
     one panel per roller speed; the mu_min line, feasible designs filled, the best ringed.
 
     ``designs``: :class:`webfem.groove_sizing.GrooveDesign` objects (or mappings with
-    their keys)."""
+    their keys); ``units``: of the pitch, depth and speed named in the legend and titles."""
     rows = [d.to_dict() if hasattr(d, "to_dict") else dict(d) for d in designs]
+    size, fast = unit_label("position", units), unit_label("speed", units)
+
+    def shown(value, role, digits=3):
+        return f"{convert(value, role, units):.{digits}g} "
     speeds = list(dict.fromkeys(r["speed"] for r in rows))
     fig, axes = plt.subplots(1, len(speeds), figsize=(5.2 * len(speeds), 4.2), squeeze=False,
                              sharey=True)
@@ -255,8 +314,8 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None) -> Path
                 continue
             x = [100 * r["land_fraction"] for r in line]
             y = [r["mu"] for r in line]
-            (h,) = ax.plot(x, y, "-", label=f"pitch {key[0] * 1e3:.3g} mm, depth "
-                                            f"{key[1] * 1e3:.3g} mm")
+            (h,) = ax.plot(x, y, "-", label=f"pitch {shown(key[0], 'position')}{size}, "
+                                            f"depth {shown(key[1], 'position')}{size}")
             ax.scatter(x, y, color=h.get_color(), zorder=3,
                        facecolors=[h.get_color() if r["feasible"] else "white" for r in line])
         b = (best or {}).get(speed)
@@ -266,7 +325,7 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None) -> Path
                        edgecolors="k", zorder=4, label="best: most land with mu >= mu_min")
         ax.axhline(mu_min, color="k", ls="--", lw=1)
         ax.text(ax.get_xlim()[0], mu_min, f" mu_min = {mu_min:g}", va="bottom", fontsize=8)
-        ax.set_title(f"roller speed {speed:g} m/s", fontsize=10)
+        ax.set_title(f"roller speed {shown(speed, 'speed', 4)}{fast}", fontsize=10)
         ax.set_xlabel("land fraction a / pitch [%]  (contact area)")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("traction coefficient mu [-]")

@@ -9,7 +9,9 @@ c. the local friction coefficient mu(x) in the wrap, over bands showing the loca
 
 Results without a film (closed form, fe1d) get panels b and c only. The wrap edges
 x = -+RB/2 are marked in every panel; air is dragged towards +x. Coordinates are drawn in
-millimetres, gaps in micrometres. Nothing here solves: it reads a :class:`~webfem.Result`.
+millimetres, gaps in micrometres and pressures in Pa; with ``units="metric"`` pressures in
+kPa, with ``units="us"`` coordinates in inches, gaps in mils and pressures in psi
+(:data:`webfem.units.SYSTEMS`). Nothing here solves: it reads a :class:`~webfem.Result`.
 
 Examples
 --------
@@ -35,13 +37,13 @@ from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import FormatStrFormatter, NullFormatter  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
-from .charts import _save  # noqa: E402
+from ..units import convert, unit_label  # noqa: E402
+from .charts import _level_text, _save  # noqa: E402
 
 __all__ = ["film_pictures", "film_figure", "REGIME_COLOURS"]
 
 #: Regime code -> (name, band colour), codes as in :data:`webfem.physics.contact.REGIMES`.
 REGIME_COLOURS = {0: ("boundary", "#f4a6a6"), 1: ("mixed", "#f9d98c"), 2: ("fluid", "#b9dcf2")}
-_MM, _UM = 1e3, 1e6
 
 
 def _reach(result) -> float:
@@ -67,11 +69,13 @@ def _full_width(film):
     return pts, tri, p
 
 
-def _edges(ax, half, label=False):
+def _edges(ax, half, scale, label=False):
+    """The wrap edges at x = -+``half`` [m] (drawn ``scale`` units per metre)."""
     for sign, name in ((-1, "inlet edge"), (1, "outlet edge")):
-        ax.axvline(sign * half * _MM, color="0.2", lw=0.8, ls=(0, (4, 2)))
+        ax.axvline(sign * half * scale, color="0.2", lw=0.8, ls=(0, (4, 2)))
         if label:
-            ax.annotate(f"wrap {name}", (sign * half * _MM, 1.0), xycoords=("data", "axes fraction"),
+            ax.annotate(f"wrap {name}", (sign * half * scale, 1.0),
+                        xycoords=("data", "axes fraction"),
                         xytext=(0, 3), textcoords="offset points", ha="center", va="bottom",
                         fontsize=7, color="0.2")
 
@@ -96,8 +100,9 @@ def _centre_line(result):
     return pts[on, 0][order], np.asarray(film["h"], float)[on][order]
 
 
-def _regime_bands(ax, x, regime, inside):
-    """Background bands coloured by the local regime, inside the wrap only."""
+def _regime_bands(ax, x, regime, inside, scale):
+    """Background bands coloured by the local regime, inside the wrap only (x [m] drawn
+    ``scale`` units per metre)."""
     x, regime = np.asarray(x, float), np.asarray(regime, int)
     idx = np.flatnonzero(inside)
     if idx.size == 0:
@@ -108,15 +113,25 @@ def _regime_bands(ax, x, regime, inside):
             end = idx[k - 1]
             lo = x[start] if start == idx[0] else 0.5 * (x[start - 1] + x[start])
             hi = x[end] if end == idx[-1] else 0.5 * (x[end] + x[end + 1])
-            ax.axvspan(lo * _MM, hi * _MM, color=REGIME_COLOURS[int(regime[start])][1],
+            ax.axvspan(lo * scale, hi * scale, color=REGIME_COLOURS[int(regime[start])][1],
                        lw=0, zorder=0)
             if k < idx.size:
                 start = idx[k]
 
 
-def film_figure(result, path, title: str | None = None) -> Path:
-    """Draw the panels described in the module docstring into ``path`` (PNG); returns it."""
+def _amount(value: float) -> str:
+    """A pressure as labelled: whole numbers from 100 up (Pa), else 3 digits (kPa, psi)."""
+    return f"{value:.0f}" if abs(value) >= 100 else f"{value:.3g}"
+
+
+def film_figure(result, path, title: str | None = None, units: str = "si") -> Path:
+    """Draw the panels described in the module docstring into ``path`` (PNG), in ``units``
+    (si, metric or us); returns it."""
     s, case = result.summary, result.case
+    # display units per SI unit (the conversions are linear)
+    to_x, to_h = convert(1.0, "position", units), convert(1.0, "thin", units)
+    to_p = convert(1.0, "pressure", units)
+    x_unit, h_unit, p_unit = (unit_label(r, units) for r in ("position", "thin", "pressure"))
     half = case.roller.radius * case.B / 2
     reach = _reach(result)
     two_d = result.film is not None
@@ -136,79 +151,82 @@ def film_figure(result, path, title: str | None = None) -> Path:
         # cap the colours at 1.5 T/R so the film in the wrap keeps its shades
         scale = 1.5 * (s.T_eff or case.web.tension) / case.roller.radius
         capped = np.abs(p).max() > scale
-        mesh = ax.tripcolor(Triangulation(pts[:, 0] * _MM, pts[:, 1] * _MM, tri),
-                            np.clip(p, -scale, scale), shading="gouraud", cmap="RdBu_r",
-                            norm=CenteredNorm(0.0, halfrange=scale), rasterized=True)
+        mesh = ax.tripcolor(Triangulation(pts[:, 0] * to_x, pts[:, 1] * to_x, tri),
+                            np.clip(p, -scale, scale) * to_p, shading="gouraud", cmap="RdBu_r",
+                            norm=CenteredNorm(0.0, halfrange=scale * to_p), rasterized=True)
         bar = fig.colorbar(mesh, cax=fig.add_subplot(grid[0, 1]),
                            extend="both" if capped else "neither")
-        bar.set_label("p - p_a [Pa]", fontsize=8)
+        bar.set_label(f"p - p_a [{p_unit}]", fontsize=8)
         bar.ax.tick_params(labelsize=7)
-        peaks = (f"; colours capped at 1.5 T/R, peaks {p.min():.0f} and {p.max():.0f} Pa"
+        peaks = (f"; colours capped at 1.5 T/R, peaks {_amount(p.min() * to_p)} and "
+                 f"{_amount(p.max() * to_p)} {p_unit}"
                  if capped else "")
-        ax.set_ylabel("z across width [mm]")
+        ax.set_ylabel(f"z across width [{x_unit}]")
         # the periodic groove cell, mirrored: a land in the middle, half a groove each side
         span = ("one groove pitch" if s.groove_domain and s.groove_domain.startswith(
             "periodic") else "full width")
         ax.set_title(f"a. film pressure above ambient, {span}{peaks}", fontsize=9,
                      loc="left", pad=12)
-        _edges(ax, half, label=True)
+        _edges(ax, half, to_x, label=True)
 
     ax = axes[-2]
     x, h = _centre_line(result)
     inside = np.abs(x) <= reach * 1.02
-    ax.plot(x[inside] * _MM, h[inside] * _UM, color="k", lw=1.4, label="gap h")
-    levels = [(s.h_c * _UM, f"h_c = {s.h_c * _UM:.2f} um (boundary below)", "tab:orange"),
-              (3 * s.sigma * _UM, f"3 sigma = {3 * s.sigma * _UM:.2f} um (fluid above)",
-               "tab:blue")]
+    ax.plot(x[inside] * to_x, h[inside] * to_h, color="k", lw=1.4, label="gap h")
+    levels = [(s.h_c * to_h, f"h_c = {_level_text(s.h_c * to_h)} {h_unit} (boundary below)",
+               "tab:orange"),
+              (3 * s.sigma * to_h, f"3 sigma = {_level_text(3 * s.sigma * to_h)} {h_unit} (fluid "
+               "above)", "tab:blue")]
     for value, text, colour in levels:
         if math.isfinite(value):
             _level(ax, value, text, colour)
     # a log axis: the landing zone (a few um) and the entry gaps (tens of um) both show
-    shown = h[inside][h[inside] > 0] * _UM
-    low = max(min([s.h_c * _UM, 3 * s.sigma * _UM] + ([shown.min()] if shown.size else [])),
-              0.1 * s.h_c * _UM)
-    landed = inside & (h * _UM < 0.5 * low)
+    shown = h[inside][h[inside] > 0] * to_h
+    low = max(min([s.h_c * to_h, 3 * s.sigma * to_h] + ([shown.min()] if shown.size else [])),
+              0.1 * s.h_c * to_h)
+    landed = inside & (h * to_h < 0.5 * low)
     if landed.any():   # the closed form lands the web (h = 0), which a log axis cannot show
-        ax.fill_between(x * _MM, 0.5 * low, 4.0 * low, where=landed, color="0.6", lw=0,
-                        label=f"web landed (h below {0.5 * low:.2g} um)")
+        ax.fill_between(x * to_x, 0.5 * low, 4.0 * low, where=landed, color="0.6", lw=0,
+                        label=f"web landed (h below {0.5 * low:.2g} {h_unit})")
         ax.legend(loc="upper right", fontsize=7, frameon=False)
-    high = max([3 * s.sigma * _UM] + [v * _UM for v in (s.h_inlet, s.h_outlet)
+    high = max([3 * s.sigma * to_h] + [v * to_h for v in (s.h_inlet, s.h_outlet)
                                       if math.isfinite(v)])
     ax.set_yscale("log")
     ax.set_ylim(0.5 * low, 4.0 * high)
-    ax.set_yticks([t for t in (0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000)
+    ax.set_yticks([t for t in (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100,
+                               200, 500, 1000)
                    if 0.5 * low <= t <= 4.0 * high])
     ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
     ax.yaxis.set_minor_formatter(NullFormatter())
-    ax.set_ylabel("gap h [um]")
+    ax.set_ylabel(f"gap h [{h_unit}]")
     ax.set_title(f"{'b' if two_d else 'a'}. gap along the centre line (log scale; the far "
                  "entry gaps run off the top)", fontsize=9, loc="left",
                  pad=3 if two_d else 12)
-    _edges(ax, half, label=not two_d)
+    _edges(ax, half, to_x, label=not two_d)
 
     ax = axes[-1]
     f = result.fields
     x = np.asarray(f["x"], float)
     wrap = (np.asarray(f["in_wrap"]) > 0) if "in_wrap" in f else np.abs(x) <= half * (1 + 1e-9)
     if "regime" in f:
-        _regime_bands(ax, x, f["regime"], wrap)
+        _regime_bands(ax, x, f["regime"], wrap, to_x)
     if "mu" in f:
-        ax.plot(x[wrap] * _MM, np.asarray(f["mu"], float)[wrap], color="k", lw=1.3,
+        ax.plot(x[wrap] * to_x, np.asarray(f["mu"], float)[wrap], color="k", lw=1.3,
                 label="local mu(x)")
     ax.axhline(s.mu, color="tab:red", lw=0.9, ls=(0, (5, 2)))
-    ax.annotate(f"wrap average mu = {s.mu:.3f}", (-half * _MM, s.mu), xytext=(4, 2),
+    ax.annotate(f"wrap average mu = {s.mu:.3f}", (-half * to_x, s.mu), xytext=(4, 2),
                 textcoords="offset points", ha="left", va="bottom", fontsize=7,
                 color="tab:red")
     ax.set_ylim(0.0, None)
     ax.set_ylabel("friction mu [-]")
-    ax.set_xlabel("x along the arc from the wrap centre [mm]")
+    ax.set_xlabel(f"x along the arc from the wrap centre [{x_unit}]")
     ax.set_title(f"{'c' if two_d else 'b'}. local friction and regime in the wrap",
                  fontsize=9, loc="left")
     handles = [Patch(color=c, label=name) for name, c in REGIME_COLOURS.values()]
     fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7,
                title="regime bands", title_fontsize=7, frameon=False)
-    _edges(ax, half)
-    axes[0].set_xlim(-reach * _MM, reach * _MM)
+    _edges(ax, half, to_x)
+    axes[0].set_xlim(-reach * to_x, reach * to_x)
     for a in axes:
         a.tick_params(labelsize=8)
         a.grid(True, alpha=0.25) if a is not axes[0] or not two_d else None
@@ -217,10 +235,10 @@ def film_figure(result, path, title: str | None = None) -> Path:
     return _save(fig, path)
 
 
-def film_pictures(result, folder, stem: str | None = None) -> list[Path]:
-    """Write ``STEM_film.png`` (the panels of :func:`film_figure`) into ``folder``; returns
-    ``[path]``. The file appears whole or not at all."""
+def film_pictures(result, folder, stem: str | None = None, units: str = "si") -> list[Path]:
+    """Write ``STEM_film.png`` (the panels of :func:`film_figure`, in ``units``) into
+    ``folder``; returns ``[path]``. The file appears whole or not at all."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     stem = stem or result["model"]
-    return [film_figure(result, folder / f"{stem}_film.png")]
+    return [film_figure(result, folder / f"{stem}_film.png", units=units)]

@@ -1,12 +1,16 @@
 """A report to share: one self-contained HTML page of a solved case.
 
 The page holds, in this order, sections with these ``id`` attributes: ``inputs`` (every case
-key with its value, SI unit and meaning), ``model`` (which model answered, why, the effects
+key with its value, unit and meaning), ``model`` (which model answered, why, the effects
 included and the options), ``summary`` (the numbers with units), ``pictures`` (the film
 picture of :mod:`webfem.io.pictures` and any charts given, embedded as base64 PNG),
 ``warnings`` and ``computed`` (mesh, iterations, residual, time, webfem and Python versions).
 Nothing is fetched: no scripts, no style sheets or images from elsewhere, so a colleague
 opens the file in any browser without webfem.
+
+``units`` (si, metric or us; :data:`webfem.units.SYSTEMS`) sets the units of the inputs, the
+summary and the pictures; the quantities :data:`webfem.units.ROLES` does not list (viscosity,
+moduli, ...) stay SI and say so.
 
 Examples
 --------
@@ -31,6 +35,7 @@ from html import escape
 from pathlib import Path
 
 from ..files import write_text
+from ..units import ROLES, convert, unit_label
 
 __all__ = ["write_report", "report_html", "SECTIONS", "SUMMARY_UNITS"]
 
@@ -38,7 +43,8 @@ __all__ = ["write_report", "report_html", "SECTIONS", "SUMMARY_UNITS"]
 SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
             "pictures": "Pictures", "warnings": "Warnings", "computed": "How it was computed"}
 
-#: Summary key -> (unit, meaning) for the summary table; lengths shown in um.
+#: Summary key -> (unit, meaning) for the summary table in SI (gaps in um, x_min in mm); in
+#: other units a key of :data:`webfem.units.ROLES` shows its display unit.
 SUMMARY_UNITS = {
     "mu": ("-", "wrap-averaged friction coefficient"),
     "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
@@ -61,7 +67,6 @@ SUMMARY_UNITS = {
     "delta_T_required": ("N/m", "idler: tension difference needed"),
     "delta_T_available": ("N/m", "idler: tension difference available"),
 }
-_SCALE = {"um": 1e6, "mm": 1e3}
 
 _STYLE = """
 body{font-family:system-ui,-apple-system,'Segoe UI',Helvetica,Arial,sans-serif;margin:0 auto;
@@ -108,7 +113,15 @@ def _table(head, rows) -> str:
     return "\n".join(out)
 
 
-def _inputs(case) -> str:
+def _shown(key: str, value, unit: str, units: str):
+    """``(value, unit)`` of a key as the page shows it in ``units``."""
+    role = ROLES.get(key)
+    if role is None or not isinstance(value, (int, float)) or isinstance(value, bool):
+        return value, unit
+    return convert(float(value), role, units), unit_label(role, units)
+
+
+def _inputs(case, units: str = "si") -> str:
     rows = []
     for section in dataclasses.fields(case):
         part = getattr(case, section.name)
@@ -117,12 +130,16 @@ def _inputs(case) -> str:
         for f in dataclasses.fields(part):
             meta, value = f.metadata, getattr(part, f.name)
             unit, doc = meta.get("unit", ""), meta.get("doc", "")
+            key = f"{section.name}.{f.name}"
             if value is None:   # left out: the key says what that means
                 shown, doc = "left out", f"{doc}; left out: {meta.get('absent', '')}"
-            else:
+            elif units == "si":   # the keys' own units, as a case file holds them
                 shown = _num(value)
-            rows.append((f"{section.name}.{f.name}", shown, unit, doc))
-    return _table(("key", "value", "unit (SI)", "meaning"), rows)
+            else:
+                value, unit = _shown(key, value, unit, units)
+                shown = _num(value)
+            rows.append((key, shown, unit, doc))
+    return _table(("key", "value", "unit (SI)" if units == "si" else "unit", "meaning"), rows)
 
 
 def _model(result) -> str:
@@ -152,15 +169,14 @@ def _model(result) -> str:
     return "\n".join(lines)
 
 
-def _summary(result) -> str:
+def _summary(result, units: str = "si") -> str:
     data = result.summary
     rows = []
     for key, (unit, meaning) in SUMMARY_UNITS.items():
         value = data.get(key)
         if value is None:
             continue
-        if isinstance(value, float) and unit in _SCALE:
-            value = value * _SCALE[unit]
+        value, unit = _shown(key, value, unit, units)
         rows.append((key, _num(value), unit, meaning))
     return _table(("quantity", "value", "unit", "meaning"), rows)
 
@@ -189,19 +205,22 @@ def _computed(result, version: str) -> str:
     return _table(("", "value", "unit", "note"), rows)
 
 
-def report_html(result, *, title: str = "", pictures=(), version: str = "") -> str:
-    """The page as text. ``pictures``: ``(png path, caption)`` pairs, embedded in order."""
+def report_html(result, *, title: str = "", pictures=(), version: str = "",
+                units: str = "si") -> str:
+    """The page as text. ``pictures``: ``(png path, caption)`` pairs, embedded in order;
+    ``units``: of the inputs and the summary."""
     s = result.summary
     used = s.model_used or s.model
     title = title or "webfem report"
     warn = "".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings) \
         or '<p class="ok">No warnings.</p>'
     figures = "\n".join(_picture(p, c) for p, c in pictures) or "<p>No pictures.</p>"
-    body = {"inputs": _inputs(result.case), "model": _model(result),
-            "summary": _summary(result), "pictures": figures, "warnings": warn,
+    body = {"inputs": _inputs(result.case, units), "model": _model(result),
+            "summary": _summary(result, units), "pictures": figures, "warnings": warn,
             "computed": _computed(result, version)}
     head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)}, smallest gap "
-            f"{s.h_min * 1e6:.3g} um; model {escape(used)}"
+            f"{convert(s.h_min, 'thin', units):.3g} {unit_label('thin', units)}; model "
+            f"{escape(used)}"
             f"{'' if s.converged else ' (NOT converged)'}</p>")
     nav = "<nav>" + "".join(f'<a href="#{k}">{v}</a>' for k, v in SECTIONS.items()) + "</nav>"
     sections = "\n".join(f'<section id="{k}"><h2>{SECTIONS[k]}</h2>\n{body[k]}\n</section>'
@@ -212,13 +231,13 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "") -> s
             f"<h1>{escape(title)}</h1>{head}{nav}\n{sections}\n</body></html>\n")
 
 
-def write_report(result, folder, *, title: str = "", charts=(), name: str = "report.html"
-                 ) -> Path:
+def write_report(result, folder, *, title: str = "", charts=(), name: str = "report.html",
+                 units: str = "si") -> Path:
     """Write the page into ``folder`` (created if missing) and return its path.
 
     The film picture (:func:`webfem.io.pictures.film_figure`) is drawn for every result;
     ``charts`` adds ``(png path, caption)`` pairs after it. The page appears whole or not at
-    all.
+    all. ``units``: of the tables and the film picture (charts given are drawn already).
     """
     from .. import __version__
     from .pictures import film_figure
@@ -227,9 +246,9 @@ def write_report(result, folder, *, title: str = "", charts=(), name: str = "rep
     folder.mkdir(parents=True, exist_ok=True)
     used = result.summary.model_used or result.summary.model
     with tempfile.TemporaryDirectory(prefix=".webfem-report-", dir=folder) as tmp:
-        film = film_figure(result, Path(tmp) / "film.png")
+        film = film_figure(result, Path(tmp) / "film.png", units=units)
         caption = (("Film pressure over the full width, " if result.film is not None else "")
                    + f"gap along the centre line and local friction in the wrap ({used}).")
         html = report_html(result, title=title, version=__version__,
-                           pictures=[(film, caption), *charts])
+                           pictures=[(film, caption), *charts], units=units)
     return write_text(folder / name, html)

@@ -29,6 +29,7 @@ from ..physics.contact import REGIMES
 from ..physics.effects import idler_check, included
 from ..physics.friction import delta_T_from_mu, friction_for
 from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
+from ..progress import stage
 from ..result import Diagnostics, Fields, Result, Summary
 from .admissible import _no_admissible_solution, admissibility
 from .refine import adapted_nodes, minimum, wrap_samples
@@ -87,7 +88,8 @@ def _solve_and_refine(disc: Discretisation, start: Start, prm, options):
     """Solve on the starting mesh, then refine where the film is thin and solve again, up to
     ``options.adapt`` rounds."""
     problem = start.problem
-    u, info = _iterate(problem, start.u0, prm, options)
+    with stage(f"{disc.name} {options.method}, {problem.n_dofs:,} unknowns"):
+        u, info = _iterate(problem, start.u0, prm, options)
     info["iterations"] += start.iterations
     rounds = 0
     while info["converged"] and rounds < options.adapt:
@@ -96,7 +98,8 @@ def _solve_and_refine(disc: Discretisation, start: Start, prm, options):
             break
         rounds += 1
         finer, u_fine = disc.refined(problem, u, prm, X, options)
-        u, info_fine = _iterate(finer, u_fine, prm, options)
+        with stage(f"{disc.name} refinement round {rounds}, {finer.n_dofs:,} unknowns"):
+            u, info_fine = _iterate(finer, u_fine, prm, options)
         info_fine["iterations"] += info["iterations"]
         info_fine["history"] = list(info["history"]) + list(info_fine["history"])
         problem, info = finer, info_fine
@@ -117,7 +120,8 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     wrap_length_check(case)
     t0 = time.perf_counter()
     prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
-    start = disc.start(case, prm, options, initial)
+    with stage(f"{disc.name} start"):
+        start = disc.start(case, prm, options, initial)
     problem, u, info = _solve_and_refine(disc, start, prm, options)
     why = admissibility(case, problem, u, prm) if info["converged"] else None
     if initial is not None and (not info["converged"] or why):

@@ -40,6 +40,7 @@ from ..fem.grooves import GroovePattern, groove_nodes
 from ..fem.transfer import film_mesh, quadrature_matrices, tensor_interpolation, width_nodes
 from ..fem.web import web_coefficients, web_jacobian, web_residual
 from ..physics.friction import friction_for
+from ..progress import stage
 from ..result import Film, Result
 from . import fe1d
 from .driver import Start, solve_fe
@@ -309,7 +310,8 @@ def _continuation(problem_at, u, prm, opts, failed: dict, f: float, what: str):
     its, hist = failed["iterations"], list(failed["history"])
     f_prev = None
     while True:
-        v, info = problem_at(f)._plain_newton(u, prm, opts.tol, opts.max_iter)
+        with stage(f"{what} continuation, {f:.3g} x"):
+            v, info = problem_at(f)._plain_newton(u, prm, opts.tol, opts.max_iter)
         its += info["iterations"]
         hist += info["history"]
         if info["converged"]:

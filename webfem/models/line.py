@@ -18,6 +18,7 @@ from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard, picard
 from ..fem.scaling import FoilParameters
+from ..progress import stage
 from .options import FE1DOptions
 
 __all__ = ["FoilBearing1D"]
@@ -188,7 +189,8 @@ class FoilBearing1D:
         first = True
         while True:
             p = target.homotopy(s)
-            out = self._newton(self.consistent_pressure(u, p), p, tol, max_iter)
+            with stage(f"Eshel-Elrod continuation, s = {s:.3g}"):
+                out = self._newton(self.consistent_pressure(u, p), p, tol, max_iter)
             info["iterations"] += out.iterations
             info["history"] += list(out.history)
             if out.converged:
