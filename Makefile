@@ -36,27 +36,31 @@ test-slow: $(STAMP)
 	$(PY) -m pytest -q -m slow
 
 # time, iterations, unknowns, error against the converged mesh and the Newton floor of each
-# model, with issue 14's targets beside them (met / not met); a few minutes on 2 cores
+# model, with issue 14's targets beside them (met / not met); about 20 minutes on 2 cores
+# (bench_figures.py alone runs `make figures` into a temporary folder: about 12)
 bench: $(STAMP)
 	$(PY) benchmarks/bench_closed_form.py
 	$(PY) benchmarks/bench_fe1d.py
 	$(PY) benchmarks/bench_fe2d.py
 	$(PY) benchmarks/bench_sweeps.py
+	$(PY) benchmarks/bench_calibration.py
+	$(PY) benchmarks/bench_figures.py
 
 clean:
 	rm -rf $(OUT) .pytest_cache
 
 # the paper's four figure families (closed form beside the 2-D FE model), the traction-loss
-# chart and the friction-model variants, into docs/figures (about 20 minutes on 2 cores)
+# chart and the friction-model variants, into docs/figures (FIG_DIR; about 12 minutes on 2 cores)
 FIG_MODEL ?= fe2d
+FIG_DIR ?= docs/figures
 figures: $(STAMP)
 	for f in fig10_wrap fig11_tension fig12_width fig13_radius; do \
 	  $(VENV)/bin/webfem sweep cases/$$f.toml --model $(FIG_MODEL) --num 24 --log --workers 2 \
-	    --out docs/figures --quiet || exit 1; done
+	    --out $(FIG_DIR) --quiet || exit 1; done
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
-	  --set model.physics=paper --chart docs/figures --points 4 --quiet
+	  --set model.physics=paper --chart $(FIG_DIR) --points 4 --quiet
 	$(VENV)/bin/webfem study variants cases/base.toml --set model.physics=paper \
-	  --out docs/figures --model $(FIG_MODEL)
+	  --out $(FIG_DIR) --model $(FIG_MODEL)
 
 # the three studies and docs/studies.md from their numbers, then Eq. 21 over lambda
 # (docs/lambda_table.md), all with the paper's physics (about 20 minutes on 2 cores)
