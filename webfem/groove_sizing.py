@@ -1,10 +1,19 @@
-"""Groove sizing: traction against groove pitch and land fraction at the case's speed(s).
+"""Groove sizing: traction against groove pitch and land fraction at the case's speed(s), and
+the traction-loss speed of each groove geometry.
 
 The question users bring (issue 15): which groove keeps mu above ``mu_min`` at a given line
 speed, and how much land (contact area, heat transfer, marking) does it cost? For each
-design (pitch p_g, land fraction a/p_g, depth delta) at each speed this solves the grooved
-2-D film (fe2d) and marks the designs with mu >= mu_min; the recommended one is the feasible
-design with the largest land fraction (ties: the larger mu).
+design (pitch p_g, land fraction a/p_g, depth delta) at each speed :func:`groove_map` solves
+the grooved 2-D film (fe2d) and marks the designs with mu >= mu_min; the recommended one is
+the feasible design with the largest land fraction (ties: the larger mu).
+:func:`loss_speed_map` finds, per geometry, the roller speed at which mu falls to ``mu_min``
+(:func:`webfem.traction.traction_loss_speed` with fe2d), beside the smooth roller's.
+
+Both are resumable when given a ``store`` (a CSV path): each design's row is saved as it
+finishes and a re-run with the same arguments solves only what is missing
+(:mod:`webfem.sweeps.keyed`). Designs without an answer are kept as they are: each design is
+solved from cold, so solving it again would repeat the failure (and a design with no
+admissible solution can cost minutes: the driver confirms it on finer meshes).
 
 Examples
 --------
@@ -14,16 +23,22 @@ Examples
 
 from __future__ import annotations
 
+import json
 import warnings
 from dataclasses import asdict, dataclass
 from typing import Callable, Sequence
 
 from .api import solve
 from .case import Case
-from .errors import ConvergenceError, InputError, ValidityWarning
+from .errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
+from .models.registry import make_options
+from .sweeps.keyed import run_points
+from .traction import traction_loss_speed
 
-__all__ = ["GrooveDesign", "groove_map", "best_designs", "DEFAULT_PITCHES",
-           "DEFAULT_LAND_FRACTIONS", "DEFAULT_DEPTH"]
+__all__ = ["GrooveDesign", "LossSpeed", "groove_map", "best_designs", "loss_speed_map",
+           "check_arguments",
+           "DEFAULT_PITCHES", "DEFAULT_LAND_FRACTIONS", "DEFAULT_DEPTH", "DEFAULT_SPEED_FACTORS",
+           "LOSS_PITCHES", "LOSS_LAND_FRACTIONS", "LOSS_SPEED_RANGE", "LOSS_SCAN"]
 
 #: Pitches [m] of the map: fine to coarse around Walker's 1.27 mm.
 DEFAULT_PITCHES = (0.8e-3, 1.27e-3, 2.5e-3, 5e-3)
@@ -31,6 +46,21 @@ DEFAULT_PITCHES = (0.8e-3, 1.27e-3, 2.5e-3, 5e-3)
 DEFAULT_LAND_FRACTIONS = (0.5, 0.65, 0.8, 0.9)
 #: Groove depth [m] of the map (Walker's 0.25 mm).
 DEFAULT_DEPTH = 0.25e-3
+#: Map speeds unless told, as multiples of the case's roller speed: the case's, and twice it
+#: for the margin of a faster line (20 and 40 m/s on the base case).
+DEFAULT_SPEED_FACTORS = (1.0, 2.0)
+#: The traction-loss grid (each geometry is a root find of about 14 fe2d solves: a smaller
+#: grid than the map's).
+LOSS_PITCHES = (1.27e-3, 2.5e-3, 5e-3)
+LOSS_LAND_FRACTIONS = (0.8, 0.9, 0.95)
+#: Roller speeds [m/s] the traction-loss search scans, and its points (logarithmic).
+LOSS_SPEED_RANGE = (1.0, 100.0)
+LOSS_SCAN = 8
+
+MAP_COLUMNS = ("speed", "pitch", "width", "depth", "land_fraction", "mu", "h_center",
+               "contact_share", "converged", "solver_message")
+LOSS_COLUMNS = ("pitch", "width", "depth", "land_fraction", "loss_speed", "mu_peak",
+                "speed_peak", "evaluations", "converged", "message")
 
 
 @dataclass(frozen=True)
@@ -47,49 +77,155 @@ class GrooveDesign:
     contact_share: float | None
     converged: bool
     feasible: bool
+    message: str = ""       # why there is no answer (the solver's or the model's message)
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+
+@dataclass(frozen=True)
+class LossSpeed:
+    """The traction-loss speed of one groove geometry (pitch 0: the smooth roller), SI units.
+
+    ``speed`` is None when mu does not fall to mu_min in the scanned range (``message`` says
+    which way); ``converged`` is False when a solve of the search failed.
+    """
+
+    pitch: float
+    width: float
+    depth: float
+    land_fraction: float
+    speed: float | None
+    mu_peak: float | None
+    speed_peak: float | None
+    evaluations: int
+    converged: bool
+    message: str
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def check_arguments(mu_min, *, speeds=(), pitches=(), land_fractions=(), depths=()) -> float:
+    """Raise :class:`~webfem.errors.InputError` naming the first value out of range (a
+    command checks before it creates its output folder); returns ``mu_min`` as a float."""
+    if isinstance(mu_min, bool) or not isinstance(mu_min, (int, float)) \
+            or not 0.0 < mu_min < 10.0:
+        raise InputError(f"mu_min = {mu_min!r} is out of range: must be > 0 and < 10")
+    for v in land_fractions:
+        if not 0.0 < v < 1.0:
+            raise InputError(f"land fraction = {v!r} is out of range: must be > 0 and < 1")
+    for name, values, unit in (("groove pitch", pitches, "m"), ("groove depth", depths, "m"),
+                               ("roller speed", speeds, "m/s")):
+        for v in values:
+            if not 0.0 < v < float("inf"):
+                raise InputError(f"{name} = {v!r} is out of range: must be > 0 [{unit}]")
+    return float(mu_min)
+
+
+def _grooved(case: Case, pitch: float, land: float, depth: float) -> Case:
+    return case.updated({"roller.groove_pitch": pitch,
+                         "roller.groove_width": pitch * (1.0 - land),
+                         "roller.groove_depth": depth})
+
+
+def _signature(kind: str, case: Case, opts, points: int, **grid) -> dict:
+    """What makes two runs the same table (JSON-ready; also the lock's description)."""
+    from . import __version__
+    return {"table": kind, "parameter": kind, "model": "fe2d", "points": points,
+            "case": case.to_dict(), "webfem": __version__,
+            "options": json.loads(json.dumps(opts.changed(), sort_keys=True, default=str)),
+            **{k: [float(v) for v in vs] if isinstance(vs, (list, tuple)) else vs
+               for k, vs in grid.items()}}
+
+
+def _run(rows_of, n: int, store, sig, columns, keys, points, progress) -> list[dict]:
+    """Every row, through the resumable store when there is one, else in memory. A design
+    without an answer is kept too: each is solved from cold, so a re-run would only repeat
+    its failure (delete the CSV to solve everything again)."""
+    if store is not None:
+        return run_points(store, sig, columns, keys, points, rows_of, progress=progress,
+                          keep_failures=True)
+    out = []
+    for i in range(n):
+        out.append(rows_of(i))
+        if progress:
+            progress(i + 1, n)
+    return out
 
 
 def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = None,
                pitches: Sequence[float] = DEFAULT_PITCHES,
                land_fractions: Sequence[float] = DEFAULT_LAND_FRACTIONS,
                depths: Sequence[float] = (DEFAULT_DEPTH,), options=None,
-               progress: Callable[[int, int], None] | None = None) -> list[GrooveDesign]:
-    """Every design (pitch x land fraction x depth) at every roller speed (default: the
-    case's), solved with fe2d; a design that does not converge is kept with
-    ``converged = False`` and is never feasible."""
-    if not 0.0 < mu_min < 10.0:
-        raise InputError(f"mu_min = {mu_min!r} is out of range: must be > 0 and < 10")
-    for v in land_fractions:
-        if not 0.0 < v < 1.0:
-            raise InputError(f"land fraction = {v!r} is out of range: must be > 0 and < 1")
-    for name, values in (("groove pitch", pitches), ("groove depth", depths)):
-        for v in values:
-            if not 0.0 < v < float("inf"):
-                raise InputError(f"{name} = {v!r} is out of range: must be > 0 [m]")
-    speeds = [case.roller.speed] if speeds is None else list(speeds)
-    designs = [(s, p, f, d) for s in speeds for p in pitches for f in land_fractions
-               for d in depths]
-    out = []
-    for i, (speed, pitch, land, depth) in enumerate(designs):
-        c = case.updated({"roller.speed": speed, "roller.groove_pitch": pitch,
-                          "roller.groove_width": pitch * (1.0 - land),
-                          "roller.groove_depth": depth})
+               progress: Callable[[int, int], None] | None = None,
+               store=None) -> list[GrooveDesign]:
+    """Every design (pitch x land fraction x depth) at every roller speed, solved with fe2d.
+
+    Parameters
+    ----------
+    case : Case
+        The line; its groove keys are replaced by each design's.
+    mu_min : float
+        Traction needed, > 0 and < 10: marks the feasible designs.
+    speeds : sequence of float, optional
+        Roller speeds [m/s]; default :data:`DEFAULT_SPEED_FACTORS` times the case's.
+    pitches, land_fractions, depths : sequences of float
+        The grid: pitches and depths [m] > 0, land fractions a/pitch in (0, 1).
+    options : FE2DOptions or dict, optional
+        fe2d's options.
+    progress : callable, optional
+        ``progress(finished, total)`` after each design.
+    store : path, optional
+        A CSV: each design's row is saved as it finishes and a re-run of the same map
+        (case, grid, options; ``mu_min`` may differ: it only marks) solves only the
+        missing designs. None: in memory.
+
+    Returns
+    -------
+    list of GrooveDesign
+        Speed by speed, then pitch, land fraction and depth. A design that does not
+        converge, or has no admissible solution (the web pressed through its asperities),
+        has ``converged = False``, ``mu = None`` and the reason in ``message``.
+
+    Raises
+    ------
+    InputError
+        A value out of range (before anything is solved), an output that cannot be written
+        or a store locked by a running map.
+    SweepInterrupted
+        Ctrl-C with a ``store``: says how many designs are saved.
+    """
+    speeds = ([f * case.roller.speed for f in DEFAULT_SPEED_FACTORS] if speeds is None
+              else [float(s) for s in speeds])
+    mu_min = check_arguments(mu_min, speeds=speeds, pitches=pitches,
+                             land_fractions=land_fractions, depths=depths)
+    opts = make_options("fe2d", options)
+    designs = [(s, p, p * (1.0 - f), d, f) for s in speeds for p in pitches
+               for f in land_fractions for d in depths]
+
+    def row(n: int) -> dict:
+        speed, pitch, width, depth, land = designs[n]
+        c = _grooved(case, pitch, land, depth).updated({"roller.speed": speed})
+        out = {"speed": speed, "pitch": pitch, "width": width, "depth": depth,
+               "land_fraction": c.land_fraction, "converged": False}
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", ValidityWarning)
-                r = solve(c, model="fe2d", options=options)
-            mu, hc, cs, ok = r["mu"], r["h_center"], r["contact_share"], True
-        except ConvergenceError:
-            mu = hc = cs = None
-            ok = False
-        out.append(GrooveDesign(speed, pitch, pitch * (1.0 - land), depth, c.land_fraction,
-                                mu, hc, cs, ok, bool(ok and mu >= mu_min)))
-        if progress:
-            progress(i + 1, len(designs))
-    return out
+                r = solve(c, model="fe2d", options=opts)
+        except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
+            return {**out, "solver_message": " ".join(str(err).split())}
+        return {**out, "mu": r["mu"], "h_center": r["h_center"],
+                "contact_share": r["contact_share"], "converged": True}
+
+    sig = _signature("groove map", case, opts, len(designs), speeds=speeds, pitches=pitches,
+                     land_fractions=land_fractions, depths=depths)
+    rows = _run(row, len(designs), store, sig, MAP_COLUMNS,
+                ("speed", "pitch", "width", "depth"), [d[:4] for d in designs], progress)
+    return [GrooveDesign(r["speed"], r["pitch"], r["width"], r["depth"], r["land_fraction"],
+                         r.get("mu"), r.get("h_center"), r.get("contact_share"),
+                         bool(r["converged"]), bool(r["converged"] and r["mu"] >= mu_min),
+                         r.get("solver_message") or "") for r in rows]
 
 
 def best_designs(designs: Sequence[GrooveDesign]) -> dict[float, GrooveDesign | None]:
@@ -103,3 +239,82 @@ def best_designs(designs: Sequence[GrooveDesign]) -> dict[float, GrooveDesign | 
             if b is None or (d.land_fraction, d.mu) > (b.land_fraction, b.mu):
                 best[d.speed] = d
     return best
+
+
+def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS_PITCHES,
+                   land_fractions: Sequence[float] = LOSS_LAND_FRACTIONS,
+                   depth: float = DEFAULT_DEPTH, speed_range=LOSS_SPEED_RANGE,
+                   n_scan: int = LOSS_SCAN, xtol: float = 1e-2, options=None,
+                   progress: Callable[[int, int], None] | None = None,
+                   store=None) -> list[LossSpeed]:
+    """The traction-loss speed (mu falls to ``mu_min`` after its peak) of the smooth roller
+    and of every groove geometry, with fe2d.
+
+    Each is :func:`webfem.traction.traction_loss_speed`: a logarithmic scan of ``n_scan``
+    speeds walked with continuation, then Brent's method to ``xtol`` of the bracket's low
+    end (1 % by default: the chart's resolution).
+
+    Parameters
+    ----------
+    case : Case
+        The line; its roller speed is scanned, its groove keys replaced.
+    mu_min : float
+        The traction threshold, > 0 and < 10.
+    pitches, land_fractions : sequences of float
+        The geometries: pitches [m] > 0 x land fractions in (0, 1).
+    depth : float
+        Groove depth [m] of every geometry.
+    speed_range : (float, float)
+        Roller speeds [m/s] scanned.
+    n_scan, xtol
+        Scan points and Brent's relative tolerance.
+    options : FE2DOptions or dict, optional
+        fe2d's options.
+    progress : callable, optional
+        ``progress(finished, total)`` after each geometry.
+    store : path, optional
+        A CSV: each geometry is saved as it finishes and a re-run of the same table
+        (case, grid, ``mu_min``, scan, options) solves only what is missing.
+
+    Returns
+    -------
+    list of LossSpeed
+        The smooth roller first (pitch 0), then pitch by pitch, land fraction by land
+        fraction. A search whose solve failed has ``converged = False`` and the reason.
+
+    Raises
+    ------
+    InputError, SweepInterrupted
+        As :func:`groove_map`.
+    """
+    mu_min = check_arguments(mu_min, pitches=pitches, land_fractions=land_fractions,
+                             depths=[depth])
+    opts = make_options("fe2d", options)
+    shapes = [(0.0, 0.0, 0.0, 1.0)] + [(p, p * (1.0 - f), depth, f) for p in pitches
+                                       for f in land_fractions]
+
+    def row(n: int) -> dict:
+        pitch, width, d, land = shapes[n]
+        c = _grooved(case, pitch, land, d) if pitch else case.updated(
+            {"roller.groove_width": 0.0})
+        out = {"pitch": pitch, "width": width, "depth": d, "land_fraction": c.land_fraction,
+               "evaluations": 0}
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)
+                t = traction_loss_speed(c, mu_min, "fe2d", speed_range=speed_range,
+                                        n_scan=n_scan, xtol=xtol, options=opts)
+        except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
+            return {**out, "converged": False, "message": " ".join(str(err).split())}
+        return {**out, "loss_speed": t.speed, "mu_peak": t.mu_peak, "speed_peak": t.speed_peak,
+                "evaluations": t.evaluations, "converged": True, "message": t.message}
+
+    sig = _signature("traction-loss speed", case, opts, len(shapes), mu_min=mu_min,
+                     pitches=pitches, land_fractions=land_fractions, depth=float(depth),
+                     speed_range=list(speed_range), n_scan=n_scan, xtol=xtol)
+    rows = _run(row, len(shapes), store, sig, LOSS_COLUMNS, ("pitch", "width", "depth"),
+                [s[:3] for s in shapes], progress)
+    return [LossSpeed(r["pitch"], r["width"], r["depth"], r["land_fraction"],
+                      r.get("loss_speed"), r.get("mu_peak"), r.get("speed_peak"),
+                      int(r.get("evaluations") or 0), bool(r["converged"]),
+                      r.get("message") or "") for r in rows]

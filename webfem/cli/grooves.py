@@ -1,14 +1,18 @@
 """``webfem grooves``: which circumferential grooves keep mu >= mu_min, and at what cost in
-land (contact area): a map of traction against groove pitch and land fraction."""
+land (contact area): a map of traction against groove pitch and land fraction, and with
+``--loss-speed`` the traction-loss speed of each groove geometry; resumable."""
 
 from __future__ import annotations
 
-import csv
 import sys
+import textwrap
 from pathlib import Path
 
+from ..errors import InputError
 from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITCHES,
-                             best_designs, groove_map)
+                             DEFAULT_SPEED_FACTORS, LOSS_LAND_FRACTIONS, LOSS_PITCHES,
+                             LOSS_SCAN, LOSS_SPEED_RANGE, best_designs, check_arguments,
+                             groove_map, loss_speed_map)
 from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
                      add_units_argument, case_from, model_options, output_folder, print_json,
@@ -16,7 +20,6 @@ from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_arg
 
 
 def _floats(text: str) -> list[float]:
-    from ..errors import InputError
     try:
         values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
@@ -26,91 +29,181 @@ def _floats(text: str) -> list[float]:
     return values
 
 
+def _listed(values) -> str:
+    return ",".join(f"{v:g}" for v in values)
+
+
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser(
-        "grooves", help="groove sizing: traction against groove pitch and land fraction",
+        "grooves", help="groove sizing: traction against groove pitch and land fraction, "
+                        "and the traction-loss speed of each groove (resumable)",
         formatter_class=HELP_FORMATTER,
-        description="Solve the grooved 2-D film (fe2d) for each groove design at the case's "
-                    "speed (or --speed) and mark the designs that keep mu >= --mu-min; the "
-                    "recommended one has the largest land fraction (contact area).")
+        description=textwrap.fill(
+                    "Solve the grooved 2-D film (fe2d) for each groove design (pitch x land "
+                    "fraction x depth) at each roller speed and mark the designs that keep "
+                    "mu >= --mu-min; the recommended one has the largest land fraction "
+                    "(contact area). Writes CASE_grooves.csv and .png into --out; each design "
+                    "is saved as it finishes, so a run that is interrupted (Ctrl-C, kill) "
+                    "continues where it stopped when run again with the same arguments.", 88),
+        epilog=textwrap.fill("With --loss-speed it also finds, for each pitch in --loss-pitches and land "
+               "fraction in --loss-lands (at the first --depths), the roller speed at which "
+               "mu falls to --mu-min (a scan of "
+               f"{LOSS_SCAN} speeds over {LOSS_SPEED_RANGE[0]:g}-{LOSS_SPEED_RANGE[1]:g} m/s "
+               "refined by Brent's method to 1 %, about 14 fe2d solves per geometry), and the "
+               "smooth roller's: CASE_grooves_loss.csv and .png (loss speed against land "
+               "fraction, a line per pitch). On the base case the defaults take about "
+               "11 minutes for the map (most of it one design without an admissible "
+               "solution, confirmed on finer meshes) and 5 minutes more for --loss-speed; a "
+               "design without an answer is kept, not solved again.", 88))
     add_case_arguments(p, model=False)
     p.add_argument("--opt", action="append", metavar="NAME=VALUE",
                    help="fe2d option, e.g. --opt level=1")
     p.add_argument("--mu-min", type=float, required=True, help="friction needed, e.g. 0.2")
     p.add_argument("--speed", type=speed_value, action="append",
                    help="roller speed (m/s or with a unit, e.g. '1000 m/min'); repeat for "
-                        "several (default: the case's)")
-    p.add_argument("--pitches", default=",".join(f"{v:g}" for v in DEFAULT_PITCHES),
-                   help="groove pitches [m], comma-separated (default "
-                        + ",".join(f"{v:g}" for v in DEFAULT_PITCHES) + ")")
-    p.add_argument("--lands", default=",".join(f"{v:g}" for v in DEFAULT_LAND_FRACTIONS),
-                   help="land fractions a/pitch, comma-separated (default "
-                        + ",".join(f"{v:g}" for v in DEFAULT_LAND_FRACTIONS) + ")")
+                        "several (default: the case's speed times "
+                        + " and ".join(f"{f:g}" for f in DEFAULT_SPEED_FACTORS)
+                        + ", for the margin of a faster line: "
+                        + " and ".join(f"{20 * f:g}" for f in DEFAULT_SPEED_FACTORS)
+                        + " m/s on the base case)")
+    p.add_argument("--pitches", default=_listed(DEFAULT_PITCHES),
+                   help=f"groove pitches [m], comma-separated (default "
+                        f"{_listed(DEFAULT_PITCHES)})")
+    p.add_argument("--lands", default=_listed(DEFAULT_LAND_FRACTIONS),
+                   help=f"land fractions a/pitch, comma-separated (default "
+                        f"{_listed(DEFAULT_LAND_FRACTIONS)})")
     p.add_argument("--depths", default=f"{DEFAULT_DEPTH:g}",
                    help=f"groove depths [m], comma-separated (default {DEFAULT_DEPTH:g})")
+    p.add_argument("--loss-speed", action="store_true",
+                   help="also chart the traction-loss speed against groove geometry")
+    p.add_argument("--loss-pitches", default=_listed(LOSS_PITCHES),
+                   help=f"pitches [m] of --loss-speed (default {_listed(LOSS_PITCHES)})")
+    p.add_argument("--loss-lands", default=_listed(LOSS_LAND_FRACTIONS),
+                   help=f"land fractions of --loss-speed (default "
+                        f"{_listed(LOSS_LAND_FRACTIONS)})")
     p.add_argument("--json", action="store_true", help="the designs as JSON (SI units)")
-    p.add_argument("--out", metavar="DIR", help="also write the map as CSV (SI; with --units "
-                                                "metric or us also a converted copy) and a "
-                                                "chart (PNG) into DIR")
     add_units_argument(p)
+    p.add_argument("--out", metavar="DIR", default=".",
+                   help="folder for CASE_grooves.csv and .png, their sidecars "
+                        "(.sweep.json: what was run, for resuming) and with --loss-speed "
+                        "CASE_grooves_loss.csv and .png (default: the current folder)")
     add_quiet_argument(p)
+
+
+def _short(message: str, width: int = 64) -> str:
+    """A long message cut to ``width`` characters (the CSV and --json hold all of it)."""
+    message = message or "no message"
+    return message if len(message) <= width else message[:width - 3] + "..."
+
+
+def _print_map(designs, best, mu_min: float, units: str = "si") -> None:
+    size, thin = unit_label("position", units), unit_label("thin", units)
+
+    def g(value):   # a groove size in the display unit (mm, or in for us)
+        return convert(value, "position", units)
+
+    for speed, b in best.items():
+        print(f"roller speed {display(speed, 'speed', units)}"
+              + (f" ({60 * speed:.0f} m/min)" if units == "si" else "")
+              + f", mu_min {mu_min:g} (* feasible):")
+        print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %      mu   "
+              f"h_center {thin:2}  contact share")
+        for d in designs:
+            if d.speed != speed:
+                continue
+            mu = f"{d.mu:7.4f}" if d.converged else f"  no answer: {_short(d.message)}"
+            hc = f"{convert(d.h_center, 'thin', units):11.3g}" if d.converged else ""
+            cs = f"{d.contact_share:14.3f}" if d.converged else ""
+            mark = "*" if d.feasible else " "
+            print(f"{mark} {g(d.pitch):8.3g}  {g(d.width):9.3g}  {g(d.depth):8.3g}  "
+                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{cs}")
+        if b is None:
+            print("  no design keeps mu >= mu_min: finer pitches or narrower lands")
+        else:
+            print(f"  best: pitch {g(b.pitch):.3g} {size}, groove {g(b.width):.3g} {size} "
+                  f"wide and {g(b.depth):.3g} {size} deep: land {100 * b.land_fraction:.0f} "
+                  f"%, mu {b.mu:.3f}")
+            if b.land_fraction >= max(d.land_fraction for d in designs) * (1 - 1e-9):
+                print("  (the largest land fraction tried: larger --lands may keep mu >= "
+                      "mu_min too)")
+
+
+def _print_losses(losses, mu_min: float, units: str = "si") -> None:
+    size = unit_label("position", units)
+    fast = "m/min" if units != "us" else "ft/min"
+    other = "metric" if units != "us" else "us"
+
+    def g(value):
+        return convert(value, "position", units)
+
+    print(f"traction-loss speed (mu falls to {mu_min:g}):")
+    print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %  loss speed m/s  "
+          f"{fast:6}  solves")
+    for x in losses:
+        shape = ("  smooth roller            " if x.pitch == 0.0 else
+                 f"  {g(x.pitch):8.3g}  {g(x.width):9.3g}  {g(x.depth):8.3g}")
+        if not x.converged:
+            found = f"  no answer: {_short(x.message)}"
+        elif x.speed is None:
+            found = f"  {x.message}"
+        else:
+            found = (f"{x.speed:16.3g}  {convert(x.speed, 'speed', other):6.0f}   "
+                     f"{x.evaluations:6d}")
+        print(f"{shape}  {100 * x.land_fraction:6.1f}{found}")
 
 
 def run(args) -> int:
     case = case_from(args)
     args.model = "fe2d"
     options = model_options(args)
-    folder = output_folder(args.out, "--out") if args.out else None
-    designs = groove_map(case, args.mu_min, speeds=args.speed, pitches=_floats(args.pitches),
-                         land_fractions=_floats(args.lands), depths=_floats(args.depths),
-                         options=options,
-                         progress=Progress(args.quiet, "designs"))
+    lists = {name: _floats(getattr(args, name)) for name in
+             ("pitches", "lands", "depths", "loss_pitches", "loss_lands")}
+    check_arguments(args.mu_min, speeds=args.speed or (), pitches=lists["pitches"]
+                    + lists["loss_pitches"], land_fractions=lists["lands"] + lists["loss_lands"],
+                    depths=lists["depths"])
+    folder = output_folder(args.out, "--out")
+    stem = f"{Path(args.case).stem}_grooves"
+    designs = groove_map(case, args.mu_min, speeds=args.speed, pitches=lists["pitches"],
+                         land_fractions=lists["lands"], depths=lists["depths"],
+                         options=options, progress=Progress(args.quiet, "designs"),
+                         store=folder / f"{stem}.csv")
     best = best_designs(designs)
-    if folder:
-        path = folder / f"{Path(args.case).stem}_grooves.csv"
-        with path.open("w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(designs[0].to_dict()))
-            w.writeheader()
-            for d in designs:
-                w.writerow(d.to_dict())
-        print(f"wrote {path}", file=sys.stderr)
-        from ..io.charts import groove_chart
-        from ..io.tables import write_in_units
+    print(f"wrote {folder / f'{stem}.csv'}", file=sys.stderr)
+    from ..io.groove_charts import groove_chart, loss_speed_chart
+    from ..io.tables import write_in_units
 
-        copy = write_in_units([d.to_dict() for d in designs], path, args.units)
+    copy = write_in_units([d.to_dict() for d in designs], folder / f"{stem}.csv", args.units)
+    if copy is not None:
+        print(f"wrote {copy}", file=sys.stderr)
+    chart = groove_chart(designs, args.mu_min, folder / f"{stem}.png", best, units=args.units)
+    print(f"wrote {chart}", file=sys.stderr)
+    if not args.json:   # the map now: the loss speeds take minutes more
+        _print_map(designs, best, args.mu_min, args.units)
+        sys.stdout.flush()
+    losses = None
+    if args.loss_speed:
+        losses = loss_speed_map(case, args.mu_min, pitches=lists["loss_pitches"],
+                                land_fractions=lists["loss_lands"], depth=lists["depths"][0],
+                                options=options, progress=Progress(args.quiet, "geometries"),
+                                store=folder / f"{stem}_loss.csv")
+        print(f"wrote {folder / f'{stem}_loss.csv'}", file=sys.stderr)
+        copy = write_in_units([x.to_dict() for x in losses], folder / f"{stem}_loss.csv",
+                              args.units)
         if copy is not None:
             print(f"wrote {copy}", file=sys.stderr)
-        chart = groove_chart(designs, args.mu_min, folder / f"{Path(args.case).stem}_grooves.png",
-                             best, units=args.units)
+        chart = loss_speed_chart(losses, args.mu_min, folder / f"{stem}_loss.png",
+                                 LOSS_SPEED_RANGE,
+                                 title=f"{Path(args.case).stem}: speed at which mu falls to "
+                                       f"{args.mu_min:g} (fe2d)", units=args.units)
         print(f"wrote {chart}", file=sys.stderr)
+    code = 0 if all(best.values()) else 4
     if args.json:
-        print_json({"mu_min": args.mu_min, "designs": [d.to_dict() for d in designs],
-                    "best": {f"{s:g}": (b.to_dict() if b else None) for s, b in best.items()}})
-        return 0 if all(best.values()) else 4
-    units = args.units
-    size, thin = unit_label("position", units), unit_label("thin", units)
-
-    def mm(value):   # a groove size in the display unit (mm, or in for us)
-        return convert(value, "position", units)
-
-    for speed, b in best.items():
-        print(f"roller speed {display(speed, 'speed', units)}, mu_min {args.mu_min:g} "
-              "(* feasible):")
-        print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %      mu   "
-              f"h_center {thin:2}  contact share")
-        for d in designs:
-            if d.speed != speed:
-                continue
-            mu = f"{d.mu:7.4f}" if d.converged else "  no answer"
-            hc = f"{convert(d.h_center, 'thin', units):11.3g}" if d.converged else ""
-            cs = f"{d.contact_share:14.3f}" if d.converged else ""
-            mark = "*" if d.feasible else " "
-            print(f"{mark} {mm(d.pitch):8.3g}  {mm(d.width):9.3g}  {mm(d.depth):8.3g}  "
-                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{cs}")
-        if b is None:
-            print("  no design keeps mu >= mu_min: finer pitches or narrower lands")
-        else:
-            print(f"  best: pitch {mm(b.pitch):.3g} {size}, groove {mm(b.width):.3g} {size} "
-                  f"wide and {mm(b.depth):.3g} {size} deep: land {100 * b.land_fraction:.0f} "
-                  f"%, mu {b.mu:.3f}")
-    return 0 if all(best.values()) else 4
+        out = {"mu_min": args.mu_min, "designs": [d.to_dict() for d in designs],
+               "best": {f"{s:g}": (b.to_dict() if b else None) for s, b in best.items()}}
+        if losses is not None:
+            out["loss_speeds"] = [x.to_dict() for x in losses]
+        print_json(out)
+        return code
+    if losses is not None:
+        _print_losses(losses, args.mu_min, args.units)
+    return code

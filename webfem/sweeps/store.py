@@ -52,12 +52,16 @@ def point_key(label, value) -> tuple[str, str]:
     return str(label), repr(float(value))
 
 
-def _by_point(rows, keys: dict) -> dict[int, dict]:
+def _sweep_key(row: dict) -> tuple[str, str]:
+    return point_key(row["series"], row["value"])
+
+
+def _by_point(rows, keys: dict, row_key=_sweep_key) -> dict[int, dict]:
     """Rows by point index (the last row of a point wins); rows of no point are left out."""
     out = {}
     for row in rows:
         try:
-            index = keys.get(point_key(row["series"], row["value"]))
+            index = keys.get(row_key(row))
         except (KeyError, TypeError, ValueError):
             continue
         if index is not None:
@@ -78,7 +82,8 @@ class SweepLock:
         self.info = {"pid": os.getpid(), "host": socket.gethostname(), "time": time.time(),
                      "started": time.strftime("%Y-%m-%d %H:%M:%S"), "signature": self.hash,
                      "model": sig["model"], "parameter": sig["parameter"],
-                     "points": len(sig["values"]) * len(sig["series"]),
+                     "points": sig["points"] if "points" in sig
+                     else len(sig["values"]) * len(sig["series"]),
                      "token": uuid.uuid4().hex}
         self.held = False
 
@@ -200,12 +205,25 @@ class SweepLock:
 
 class Store:
     """The CSV and sidecar of one sweep: which points are done, appending new rows, and the
-    final rewrite in sweep order."""
+    final rewrite in sweep order.
 
-    def __init__(self, csv_path: Path, sig: dict):
+    ``columns`` and ``row_key`` (a row's point key, from its string cells) default to the
+    sweep table's; other resumable tables (e.g. the groove sizing map) give their own, with
+    a ``converged`` column. ``sig`` must then name ``model``, ``parameter`` and ``points``
+    for the lock's message. ``keep_failures``: a row that did not converge counts as done
+    too (for points solved from cold, whose failure a re-run would only repeat); by
+    default it is solved again (a sweep's continuation may fail where a cold start does
+    not).
+    """
+
+    def __init__(self, csv_path: Path, sig: dict, columns=ROW_KEYS, row_key=_sweep_key,
+                 keep_failures: bool = False):
         self.csv_path = csv_path
         self.sidecar = csv_path.with_suffix(".sweep.json")
         self.sig = sig
+        self.columns = tuple(columns)
+        self.row_key = row_key
+        self.keep_failures = keep_failures
         self._fd: int | None = None
 
     def check_paths(self) -> None:
@@ -225,8 +243,9 @@ class Store:
             raise InputError(f"cannot write in {parent}: permission denied")
 
     def load(self, keys: dict) -> dict[int, dict]:
-        """Converged rows of an earlier run of the same sweep, by point index (``keys``:
-        point key -> index); {} when there is none or the sweep changed."""
+        """Converged rows (with ``keep_failures`` every row) of an earlier run of the same
+        sweep, by point index (``keys``: point key -> index); {} when there is none or the
+        sweep changed."""
         remove_stale_temps(self.csv_path.parent, self.csv_path.name)
         remove_stale_temps(self.sidecar.parent, self.sidecar.name)
         try:
@@ -234,23 +253,25 @@ class Store:
             table = read_table(self.csv_path) if same else Table()
         except (OSError, ValueError):
             return {}
-        if table.header != list(ROW_KEYS):
+        if table.header != list(self.columns):
             return {}
-        done = _by_point(table.rows, keys)
-        return {i: r for i, r in done.items() if r["converged"] == "True"}
+        done = _by_point(table.rows, keys, self.row_key)
+        return {i: r for i, r in done.items()
+                if r["converged"] == "True"
+                or (self.keep_failures and r["converged"] == "False")}
 
     def start(self, kept: dict[int, dict]) -> None:
         """Write the CSV afresh with the ``kept`` rows (a clean file: a torn last line or
         rows that did not parse are gone), then the sidecar, and open for appending."""
         if not kept:   # a new sweep: the old sidecar goes first, so old rows never match it
             self.sidecar.unlink(missing_ok=True)
-        write_csv([kept[i] for i in sorted(kept)], self.csv_path, ROW_KEYS)
+        write_csv([kept[i] for i in sorted(kept)], self.csv_path, self.columns)
         write_text(self.sidecar, json.dumps(self.sig, indent=1))
         self._fd = os.open(self.csv_path, os.O_WRONLY | os.O_APPEND)
 
     def append(self, row: dict) -> None:
         """Append one row with a single write and force it to disk."""
-        data = format_row(row).encode("utf-8")
+        data = format_row(row, self.columns).encode("utf-8")
         while data:
             data = data[os.write(self._fd, data):]
         os.fsync(self._fd)
@@ -264,8 +285,8 @@ class Store:
         """Rewrite the CSV with the latest row of every point, in sweep order; returns them
         (strings as in the file)."""
         self.close()
-        latest = _by_point(read_table(self.csv_path).rows, keys)
+        latest = _by_point(read_table(self.csv_path).rows, keys, self.row_key)
         rows = [latest[i] for i in sorted(latest)]
-        write_csv(rows, self.csv_path, ROW_KEYS)
+        write_csv(rows, self.csv_path, self.columns)
         return rows
 

@@ -32,9 +32,10 @@ EXTRA_KEYS = ("h_c", "sigma", "share_boundary", "share_mixed", "share_fluid", "c
               "eps", "kappa", "U", "U_slide", "residual", "solver_message", "mesh", "warnings")
 #: The columns of a sweep CSV, in order.
 ROW_KEYS = ("series", "parameter", "value") + SUMMARY_KEYS + EXTRA_KEYS
-#: Columns holding text; ``BOOL_KEYS`` hold True/False, ``INT_KEYS`` counts; others numbers.
+#: Columns holding text (``message``: the traction-loss table of webfem.groove_sizing, kept
+#: in the same store); ``BOOL_KEYS`` hold True/False, ``INT_KEYS`` counts; others numbers.
 TEXT_KEYS = frozenset({"series", "parameter", "model", "regime", "solver_message", "mesh",
-                       "warnings"})
+                       "warnings", "message"})
 BOOL_KEYS = frozenset({"eq21_valid", "converged"})
 INT_KEYS = frozenset({"iterations", "n_dofs"})
 

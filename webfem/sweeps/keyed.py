@@ -1,0 +1,110 @@
+"""Resumable tables of points that are not a one-parameter sweep (e.g. the groove sizing map:
+pitch x land fraction x depth x speed), with the sweep's store and lock.
+
+Each point is identified by the exact text of its ``key_columns`` (floats, ``repr``); its row
+is appended to the CSV (and forced to disk) as soon as it is solved, beside the sidecar
+holding the table's signature. A re-run with the same signature keeps the converged rows (and
+with ``keep_failures`` the others) and solves the rest; a different signature starts over; a
+second writer is refused by the lock (:mod:`webfem.sweeps.store`).
+
+Examples
+--------
+>>> import tempfile, pathlib
+>>> path = pathlib.Path(tempfile.mkdtemp()) / "squares.csv"
+>>> sig = {"model": "none", "parameter": "x", "points": 2}
+>>> solve = lambda n: {"x": [1.0, 2.0][n], "mu": [1.0, 2.0][n] ** 2, "converged": True}
+>>> rows = run_points(path, sig, ("x", "mu", "converged"), ("x",), [(1.0,), (2.0,)], solve)
+>>> [(r["x"], r["mu"]) for r in rows]
+[(1.0, 1.0), (2.0, 4.0)]
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable, Sequence
+
+from .runner import SweepInterrupted
+from .store import Store, SweepLock
+from .table import typed
+
+__all__ = ["run_points", "exact_key"]
+
+
+def exact_key(values) -> tuple[str, ...]:
+    """A point's identity: the exact text of each of its key values."""
+    return tuple(repr(float(v)) for v in values)
+
+
+def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequence[str],
+               points: Sequence[Sequence[float]], solve: Callable[[int], dict], *,
+               progress: Callable[[int, int], None] | None = None,
+               keep_failures: bool = False) -> list[dict]:
+    """Solve (or resume) every point, saving each row as it finishes.
+
+    Parameters
+    ----------
+    csv_path : path
+        The table; beside it ``NAME.sweep.json`` (``sig``) and, while running, the lock.
+    sig : dict
+        What makes two runs the same table (JSON-ready), with ``model``, ``parameter`` and
+        ``points`` for the lock's message.
+    columns, key_columns : sequences of str
+        The CSV's columns (one of them ``converged``) and those identifying a point.
+    points : sequence of sequences of float
+        Each point's values of ``key_columns``, in table order (unique).
+    solve : callable
+        ``solve(n)``: the row of point n (a dict with ``columns``).
+    progress : callable, optional
+        ``progress(finished, total)`` after each point (finished counts the kept ones).
+    keep_failures : bool
+        False: a re-run solves the points that did not converge again (as a sweep does);
+        True: their rows are kept (points solved from cold fail again the same way).
+
+    Returns
+    -------
+    list of dict
+        The rows in point order, numbers as floats (None where empty), ``converged`` bool.
+
+    Raises
+    ------
+    InputError
+        An output that cannot be written, or a table locked by a running writer.
+    SweepInterrupted
+        Ctrl-C: the files are closed, the lock released; says how many points are saved.
+    """
+    csv_path = Path(csv_path)
+    keys = {exact_key(p): n for n, p in enumerate(points)}
+    if len(keys) != len(points):
+        raise ValueError("run_points: two points have the same key")
+    store = Store(csv_path, sig, columns,
+                  row_key=lambda row: exact_key(row[k] for k in key_columns),
+                  keep_failures=keep_failures)
+    store.check_paths()
+    lock = SweepLock(csv_path, sig)
+    saved = 0
+    try:
+        lock.acquire()
+        done = store.load(keys)
+        saved = len(done)                       # the rows a re-run keeps
+        store.start(done)
+        total = len(points)
+        finished = len(done)
+        if progress and done:
+            progress(finished, total)
+        for n in range(total):
+            if n in done:
+                continue
+            row = solve(n)
+            store.append(row)
+            saved += bool(row["converged"] or keep_failures)
+            finished += 1
+            if progress:
+                progress(finished, total)
+        return typed(store.finish(keys))
+    except KeyboardInterrupt as err:
+        raise SweepInterrupted(saved, len(points), csv_path) from err
+    finally:
+        try:
+            store.close()
+        finally:
+            lock.release()
