@@ -168,8 +168,9 @@ def test_idler_table_and_chart_in_us_units(tmp_path, capsys):
 
 
 def test_groove_designs_copy_and_chart(tmp_path, monkeypatch):
-    """The groove map's CSV copy and chart, from designs as the command gets them."""
-    from webfem.groove_sizing import GrooveDesign
+    """The groove map's CSV copy and charts, from designs as the command gets them."""
+    from webfem.groove_sizing import GrooveDesign, LossSpeed
+    from webfem.io import groove_charts
     designs = [GrooveDesign(20.0, 1.27e-3, 0.3e-3, 0.5e-3, lf, 0.2 + lf / 10, 6e-6, 0.3,
                             True, lf > 0.5) for lf in (0.4, 0.6, 0.8)]
     path = tmp_path / "g.csv"
@@ -178,13 +179,23 @@ def test_groove_designs_copy_and_chart(tmp_path, monkeypatch):
     (row, *_) = read(copy)
     assert list(row) == ["speed_ft_per_min", "pitch_in", "width_in", "depth_in",
                          "land_fraction", "mu", "h_center_mil", "contact_share",
-                         "converged", "feasible"]
+                         "converged", "feasible", "message"]
     assert float(row["pitch_in"]) == pytest.approx(0.05)
     assert write_in_units([d.to_dict() for d in designs], path, "si") is None
-    seen = capture(monkeypatch, charts)
-    charts.groove_chart(designs, 0.25, tmp_path / "g.png", units="us")
+    seen = capture(monkeypatch, groove_charts)
+    groove_charts.groove_chart(designs, 0.25, tmp_path / "g.png", units="us")
     fig = seen["fig"]
     assert fig.axes[0].get_title() == "roller speed 3937 ft/min"
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert "pitch 0.05 in, depth 0.0197 in" in labels
+    losses = [LossSpeed(1.27e-3, 0.3e-3, 0.5e-3, 0.8, 30.0, 0.3, 5.0, 12, True, ""),
+              LossSpeed(0.0, 0.0, 0.0, 1.0, 15.0, 0.3, 5.0, 12, True, "")]
+    (row, *_) = read(write_in_units([x.to_dict() for x in losses], path, "us"))
+    assert float(row["speed_ft_per_min"]) == pytest.approx(30.0 / 0.00508)
+    assert float(row["speed_peak_ft_per_min"]) == pytest.approx(5.0 / 0.00508)
+    groove_charts.loss_speed_chart(losses, 0.2, tmp_path / "l.png", (1.0, 100.0), units="us")
+    fig = seen["fig"]
+    assert fig.axes[0].child_axes[0].get_ylabel() == "traction-loss speed [ft/min]"
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert "pitch 0.05 in, depth 0.0197 in" in labels
 

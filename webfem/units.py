@@ -242,6 +242,8 @@ ROLES = {
     **dict.fromkeys(("roller.drag_torque", "web.bending_stiffness"), "torque"),
     # groove designs (webfem.groove_sizing.GrooveDesign): speed, groove pitch, width, depth
     "speed": "speed", **dict.fromkeys(("pitch", "width", "depth"), "position"),
+    # traction-loss speeds of groove geometries (webfem.groove_sizing.LossSpeed)
+    "speed_peak": "speed",
     # calibration estimates (webfem.calibrate.Calibration; sigma as above)
     "speed_constant": "speed",
 }
