@@ -152,12 +152,22 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     return result
 
 
+#: The second finer mesh of :func:`_on_finer_meshes` is tried only while the first finer one
+#: times 4 (a 2-D level) stays below this many unknowns (the base case's fe2d level 2 has
+#: 1.0e5; a grooved cell two levels up took 8 minutes and 7 GB to confirm a negative gap).
+REMEDY_MAX_DOFS = 1.2e5
+
+
 def _on_finer_meshes(disc, case, prm, options, start, problem, u, info, why):
     """A converged but inadmissible state (a coarse mesh that lets the web through its
     asperities): solve again from cold on meshes one and two levels finer, as an analyst
-    would. Returns the first admissible solution, else the last one tried."""
+    would (the second only while it stays below :data:`REMEDY_MAX_DOFS`). Returns the
+    first admissible solution, else the last one tried."""
     limit = type(options).__dataclass_fields__["level"].metadata["hi"]
-    for level in range(options.level + 1, min(options.level + 2, limit) + 1):
+    first = options.level + 1
+    for level in range(first, min(first + 1, limit) + 1):
+        if level > first and problem.n_dofs * 4 > REMEDY_MAX_DOFS:
+            break     # a 2-D mesh two levels finer: minutes and gigabytes for a likely no
         finer_options = options.replace(level=level)
         cold = disc.start(case, prm, finer_options, None)
         problem2, u2, info2 = _solve_and_refine(disc, cold, prm, finer_options)
