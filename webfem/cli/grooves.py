@@ -52,8 +52,8 @@ def add_parser(subparsers) -> None:
                "refined by Brent's method to 1 %, about 14 fe2d solves per geometry), and the "
                "smooth roller's: CASE_grooves_loss.csv and .png (loss speed against land "
                "fraction, a line per pitch). On the base case the defaults take about "
-               "11 minutes for the map (most of it one design without an admissible "
-               "solution, confirmed on finer meshes) and 5 minutes more for --loss-speed; a "
+               "4.5 minutes for the map (a minute of it one design without an admissible "
+               "solution, confirmed on a finer mesh) and 5 minutes more for --loss-speed; a "
                "design without an answer is kept, not solved again.", 88))
     add_case_arguments(p, model=False)
     p.add_argument("--opt", action="append", metavar="NAME=VALUE",
