@@ -156,3 +156,36 @@ def test_a_point_without_answer_does_not_stop_a_sweep(tmp_path):
     assert rows[1]["converged"] is True and rows[1]["h_min"] > 0
     with pytest.raises(webfem.errors.NoAdmissibleSolution):
         webfem.solve(BASE.updated({"roller.speed": 1e-7}), model="fe1d")
+
+
+@pytest.mark.parametrize("n_dofs, levels", [(1_000, [1, 2]), (50_000, [1])])
+def test_finer_mesh_remedy_stops_before_a_huge_mesh(monkeypatch, n_dofs, levels):
+    """An inadmissible field is solved again one level finer, and two levels finer only while
+    that mesh stays below REMEDY_MAX_DOFS (a grooved cell two levels up cost 8 minutes and
+    7 GB to confirm the same negative gap). The solves are stubbed: only the levels tried
+    are counted."""
+    from webfem.models import driver
+    from webfem.models.options import FE2DOptions
+
+    tried = []
+
+    class Problem:
+        pass
+
+    def solve_and_refine(disc, start, prm, options):
+        tried.append(options.level)
+        p = Problem()
+        p.n_dofs = n_dofs
+        return p, None, {"converged": True, "iterations": 1, "history": [], "reason": ""}
+
+    class Disc:
+        def start(self, case, prm, options, initial):
+            return None
+
+    monkeypatch.setattr(driver, "_solve_and_refine", solve_and_refine)
+    monkeypatch.setattr(driver, "admissibility", lambda *a: "the gap reaches -1e-8 m")
+    info = {"converged": True, "iterations": 0, "history": []}
+    out = driver._on_finer_meshes(Disc(), None, None, FE2DOptions(), None, Problem(), None,
+                                  info, "the gap reaches -1e-8 m")
+    assert tried == levels
+    assert out[-1] == "the gap reaches -1e-8 m"      # still inadmissible: reported, not hidden
