@@ -197,16 +197,6 @@ class FoilBearing2D:
         X = np.asarray(X, float)
         return self.wbasis.probes(X[None, :]) @ self.width_average(u)
 
-    def vertex_grid(self, u) -> np.ndarray:
-        """Film pressure at the tensor grid of vertices, shape (len(X), len(Z))."""
-        p = self.mesh.p
-        i = np.searchsorted(self.X, p[0] - 1e-12 * (1 + abs(p[0])))
-        j = np.searchsorted(self.Z, p[1] - 1e-12 * (1 + abs(p[1])))
-        grid = np.zeros((self.X.size, self.Z.size))
-        grid[np.clip(i, 0, self.X.size - 1), np.clip(j, 0, self.Z.size - 1)] = \
-            self.film_pressure_at_vertices(u)
-        return grid
-
     def film_pressure_at_vertices(self, u) -> np.ndarray:
         """Film pressure at the mesh vertices (for VTU)."""
         return self._split(u)[0][self.fbasis.nodal_dofs[0]]
@@ -272,14 +262,12 @@ class FoilBearing2D:
         web first (a film-only solve: it rescues starts whose pressure is far from the
         web's). ``direct_budget > 0``: first try that many coupled steps straight from
         ``u0`` (a state carried over from a solved mesh needs no film-only solve)."""
-        out = self._newton(u0, prm, tol, direct_budget) if direct_budget else None
-        if out is None:
+        first = self._newton(u0, prm, tol, direct_budget) if direct_budget else None
+        out = first
+        if first is None or not first.converged:
             out = self._newton(self.consistent_pressure(u0, prm, rtol=START_RTOL), prm, tol,
                                max_iter)
-        elif not out.converged:
-            first = out
-            out = self._newton(self.consistent_pressure(u0, prm, rtol=START_RTOL), prm, tol,
-                               max_iter)
+        if first is not None and out is not first:
             out.iterations += first.iterations
             out.history = list(first.history) + list(out.history)
         return out.u, dict(converged=out.converged, iterations=out.iterations,
