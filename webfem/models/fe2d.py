@@ -223,16 +223,18 @@ class FoilBearing2D:
         u[self.fixed] = 0.0
         return u
 
-    def _newton(self, u0, prm, tol, max_iter, rows=None, rtol=0.0):
+    def _newton(self, u0, prm, tol, max_iter, rows=None, rtol=0.0, chord=True):
         return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
                       self.free if rows is None else rows, tol=tol, max_iter=max_iter,
-                      rtol=rtol)
+                      rtol=rtol, chord=chord)
 
     def consistent_pressure(self, u, prm, tol=1e-8, rtol=0.0):
         """Film pressure for the web as it is (a film-only Newton solve, to ``tol`` or
         ``rtol`` times its first residual)."""
         rows = self.free[self.free < self.nP]
-        out = self._newton(u, prm, tol, 10, rows=rows, rtol=rtol)
+        # no chord steps: a looser start pressure sends the coupled solve on another path
+        # (on the grooved cases, more iterations before its continuation)
+        out = self._newton(u, prm, tol, 10, rows=rows, rtol=rtol, chord=False)
         return out.u if out.converged else u
 
     def solve_newton(self, u0, prm, options: FE2DOptions | None = None):

@@ -1,0 +1,102 @@
+"""The generic Newton solver: chord steps near convergence, the rounding-floor acceptance, and
+the grooved case that needed it."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from webfem.fem import newton as nw
+
+
+def _problem():
+    """A nonlinear 40-unknown system with a known root u = 1 (a diffusion-reaction chain)."""
+    n = 40
+    L = sp.diags([-1.0, 2.5, -1.0], [-1, 0, 1], shape=(n, n), format="csr")
+    b = L @ np.ones(n) + np.ones(n) ** 3
+
+    def F(u):
+        return L @ u + u**3 - b
+
+    calls = {"J": 0}
+
+    def J(u):
+        calls["J"] += 1
+        return (L + sp.diags(3.0 * u**2)).tocsr()
+
+    return F, J, calls, n
+
+
+@pytest.mark.parametrize("tol, saved", [(1e-8, 1), (1e-10, 1), (1e-12, 0)])
+def test_chord_steps_save_factorisations_at_the_same_tolerance(tol, saved):
+    """Residuals 1.1e-3 -> 4.5e-8 -> 0: the chord is tried when the last decrease predicts it
+    reaches the tolerance (4.5e-8^2 / 1.1e-3 = 1.8e-12: for 1e-8 and 1e-10, not 1e-12)."""
+    F, J, calls, n = _problem()
+    u0 = np.full(n, 3.0)
+    plain = nw.newton(F, J, u0, tol=tol, chord=False)
+    j_plain, calls["J"] = calls["J"], 0
+    fast = nw.newton(F, J, u0, tol=tol)
+    j_fast = calls["J"]
+    assert plain.converged and fast.converged
+    assert fast.residual <= tol and plain.residual <= tol
+    assert np.max(np.abs(fast.u - 1.0)) < 1e-6
+    # the last factorisation of the plain solve is replaced by a chord step
+    assert j_fast == j_plain - saved
+    assert fast.iterations == plain.iterations
+
+
+def test_a_chord_step_that_does_not_pay_is_replaced_by_a_newton_step(monkeypatch):
+    """A chord trial that fails (here: forced to a non-finite residual) costs nothing but
+    the trial: the iteration takes the Newton step, as without chord steps."""
+    F, J, calls, n = _problem()
+    plain = nw.newton(F, J, np.full(n, 3.0), tol=1e-10, chord=False)
+    j_plain, calls["J"] = calls["J"], 0
+    tried = []
+
+    def useless(F, solve, u, r, free):
+        tried.append(1)
+        return u.copy(), r, np.inf
+    monkeypatch.setattr(nw, "_chord_step", useless)
+    out = nw.newton(F, J, np.full(n, 3.0), tol=1e-10)
+    assert tried and out.converged and out.residual <= 1e-10
+    assert calls["J"] == j_plain and np.array_equal(out.u, plain.u)
+
+
+def _noisy(level, n=50):
+    """F with a rounding floor: a root near u = 2 plus a deterministic perturbation of norm
+    about 0.58 ``level`` that no step can remove (it changes with every bit of u)."""
+    def F(u):
+        seed = int(np.frombuffer(np.asarray(u, float).tobytes(), np.uint32).sum()) % 2**32
+        noise = np.random.default_rng(seed).uniform(-1.0, 1.0, u.size) / np.sqrt(u.size)
+        return (u**3 - 8.0) + level * noise
+
+    def J(u):
+        return sp.diags(3.0 * u**2).tocsr()
+    return F, J
+
+
+def test_a_residual_at_its_rounding_floor_is_converged():
+    F, J = _noisy(3e-9)
+    out = nw.newton(F, J, np.full(50, 1.5), tol=1e-9, step_tol=1e-10)
+    assert out.converged, out.reason
+    assert "rounding floor" in out.reason and out.residual <= nw.FLOOR_FACTOR * 1e-9
+    assert np.max(np.abs(out.u - 2.0)) < 1e-9
+
+
+def test_a_residual_far_above_the_tolerance_is_never_accepted_as_a_floor():
+    F, J = _noisy(1e-6)          # 1000 x the tolerance: not a rounding floor
+    out = nw.newton(F, J, np.full(50, 1.5), tol=1e-9, step_tol=1e-10, max_iter=60)
+    assert not out.converged
+    assert out.residual > nw.FLOOR_FACTOR * 1e-9
+
+
+def test_fast_grooved_design_at_high_speed_converges():
+    """1.27 mm pitch, 95 % land, 0.25 mm deep, 51.8 m/s: the traction-loss search of the
+    groove map stopped here with 'line search failed ... residual 1.243e-09' (corrections
+    ~3e-15) on the solver without chord steps and the rounding-floor acceptance."""
+    from webfem import load_case
+    from webfem.groove_sizing import _grooved
+    from webfem.models import fe2d
+
+    case = _grooved(load_case("cases/base.toml"), 1.27e-3, 0.95, 0.25e-3)
+    r = fe2d.solve(case.updated({"roller.speed": 51.8}))
+    assert r["converged"] and r["h_min"] > 0.0
