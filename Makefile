@@ -58,7 +58,7 @@ figures: $(STAMP)
 	  $(VENV)/bin/webfem sweep cases/$$f.toml --model $(FIG_MODEL) --num 24 --log --workers 2 \
 	    --out $(FIG_DIR) --quiet || exit 1; done
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
-	  --set model.physics=paper --chart $(FIG_DIR) --points 4 --quiet
+	  --set model.physics=paper --chart $(FIG_DIR) --points 4 --workers 2 --quiet
 	$(VENV)/bin/webfem study variants cases/base.toml --set model.physics=paper \
 	  --out $(FIG_DIR) --model $(FIG_MODEL)
 

@@ -50,6 +50,15 @@ def fe2d_targets(runs: int = 3):
     print(f"fe2d speed sweep, 24 points {spec.values[0]:g}..{spec.values[-1]:g} m/s: {t:.2f} s "
           f"(median of {runs}), {ok}/24 converged, {its} iterations")
     print(target("24-point fe2d sweep", t, 4.0))
+    # the same sweep as `webfem sweep cases/base.toml --model fe2d --num 24 --workers 2` runs
+    # it: two processes, each chunk with continuation (process start-up included)
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        rows = run(spec, "fe2d", Path(tmp) / "s.csv", workers=2)
+        t2 = time.perf_counter() - t0
+    print(f"  the same sweep on 2 processes: {t2:.2f} s ({t / t2:.2f}x serial), "
+          f"{sum(bool(r['converged']) for r in rows)}/24 converged")
+    print(target("24-point fe2d sweep, 2 processes", t2, 4.0))
     t0 = time.perf_counter()
     subprocess.run([sys.executable, "-m", "webfem", "traction-loss", "cases/base.toml",
                     "--mu-min", "0.1", "--model", "fe2d"], check=True, capture_output=True)

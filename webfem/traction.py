@@ -204,26 +204,52 @@ def _options_for(model: str, options):
 
 def traction_loss_table(case: Case, mu_min: float, models=("closed-form",),
                         n: int = CHART_POINTS,
-                        n_scan: int = 16, progress=None, options=None,
+                        n_scan: int = 16, progress=None, options=None, workers: int = 1,
                         **values) -> list[dict]:
     """Traction-loss speed against each of :data:`CHART_PARAMETERS` (the others at the case's
     values), ``n`` values each, one row per model and value: ``model``, ``parameter``,
     ``value``, ``speed`` (None: no loss in range), ``mu_peak``, ``evaluations``.
 
     ``options`` (or keywords): the FE model's options; the closed form takes its defaults.
+    ``workers`` > 1 runs the searches in that many local processes: each search is the same
+    serial scan and root find, so the rows are the same, in the same order (to rounding: a
+    warm process reuses cached meshes and orderings).
     """
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 256:
+        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
+                         "to 256")
     options = dict(values) if values and options is None else options
-    rows = []
-    total = len(models) * len(CHART_PARAMETERS) * n
-    for model in models:
-        opts = _options_for(model, options)
-        for key, _, (a, b) in CHART_PARAMETERS:
-            for value in np.linspace(a, b, n):
-                out = traction_loss_speed(case.updated({key: float(value)}), mu_min, model,
-                                          n_scan=n_scan, options=opts)
-                rows.append({"model": model, "parameter": key, "value": float(value),
-                             "speed": out.speed, "mu_peak": out.mu_peak,
-                             "evaluations": out.evaluations})
-                if progress:
-                    progress(len(rows), total)
+    tasks = [(case, mu_min, model, key, float(value), n_scan, _options_for(model, options))
+             for model in models for key, _, (a, b) in CHART_PARAMETERS
+             for value in np.linspace(a, b, n)]
+    rows: list = [None] * len(tasks)
+    done = 0
+
+    def record(i, row):
+        nonlocal done
+        rows[i] = row
+        done += 1
+        if progress:
+            progress(done, len(tasks))
+
+    if workers == 1:
+        for i, args in enumerate(tasks):
+            record(i, _table_row(*args))
+        return rows
+    from .sweeps.workers import Processes
+
+    pool = Processes(min(workers, len(tasks)))
+    try:
+        pool.run(list(enumerate(tasks)), record, task=_table_row)
+    finally:
+        pool.close()
     return rows
+
+
+def _table_row(case: Case, mu_min: float, model: str, key: str, value: float, n_scan: int,
+               options) -> dict:
+    """One row of :func:`traction_loss_table` (a worker's task)."""
+    out = traction_loss_speed(case.updated({key: value}), mu_min, model, n_scan=n_scan,
+                              options=options)
+    return {"model": model, "parameter": key, "value": value, "speed": out.speed,
+            "mu_peak": out.mu_peak, "evaluations": out.evaluations}

@@ -36,6 +36,9 @@ def add_parser(subparsers) -> None:
                         "form and --model) into DIR")
     p.add_argument("--points", type=positive_int, default=CHART_POINTS,
                    help=f"points per parameter in the chart (default {CHART_POINTS})")
+    p.add_argument("--workers", type=positive_int, default=1,
+                   help="run the chart's traction-loss searches in this many local processes "
+                        "(default 1; the same rows, to rounding)")
     add_units_argument(p)
     add_quiet_argument(p)
 
@@ -60,7 +63,7 @@ def run(args) -> int:
 
         models = list(dict.fromkeys(["closed-form", args.model]))
         rows = traction_loss_table(case, out.mu_min, models, n=args.points, options=options,
-                                   progress=Progress(args.quiet))
+                                   progress=Progress(args.quiet), workers=args.workers)
         speeds = np.geomspace(max(args.min_speed, 1e-3), args.max_speed, 40)
         curves = {m: mu_curve(case, m, speeds, options if m == args.model else None)
                   for m in models}

@@ -139,11 +139,13 @@ class Processes:
         from concurrent.futures import ProcessPoolExecutor
         self.pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
 
-    def run(self, tasks, record):
+    def run(self, tasks, record, task=solve_chunk):
+        """``task(*args)`` for each ``(key, args)`` of ``tasks`` in the workers;
+        ``record(key, value)`` as each finishes (in the calling process)."""
         from concurrent.futures import as_completed
         futures = {}
         try:
-            futures = {self.pool.submit(solve_chunk, *args): chunk for chunk, args in tasks}
+            futures = {self.pool.submit(task, *args): chunk for chunk, args in tasks}
             for fut in as_completed(futures):
                 record(futures[fut], fut.result())
         except BaseException:
