@@ -50,7 +50,8 @@ clean:
 	rm -rf $(OUT) .pytest_cache
 
 # the paper's four figure families (closed form beside the 2-D FE model), the traction-loss
-# chart and the friction-model variants, into docs/figures (FIG_DIR; about 12 minutes on 2 cores)
+# chart and the friction-model variants, into docs/figures (FIG_DIR; the searches and curves on
+# 2 processes)
 FIG_MODEL ?= fe2d
 FIG_DIR ?= docs/figures
 figures: $(STAMP)
@@ -60,7 +61,7 @@ figures: $(STAMP)
 	$(VENV)/bin/webfem traction-loss cases/base.toml --mu-min 0.1 --model $(FIG_MODEL) \
 	  --set model.physics=paper --chart $(FIG_DIR) --points 4 --workers 2 --quiet
 	$(VENV)/bin/webfem study variants cases/base.toml --set model.physics=paper \
-	  --out $(FIG_DIR) --model $(FIG_MODEL)
+	  --out $(FIG_DIR) --model $(FIG_MODEL) --workers 2
 
 # the three studies and docs/studies.md from their numbers, then Eq. 21 over lambda
 # (docs/lambda_table.md), all with the paper's physics (about 20 minutes on 2 cores)

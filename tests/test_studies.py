@@ -129,6 +129,11 @@ def test_variants_continue_along_speed():
                            "roller.speed": u})
     assert study.mu[key + ("closed-form",)][-1] == solve(case)["mu"]
     assert study.mu[key + ("fe1d",)][-1] == pytest.approx(solve(case, "fe1d")["mu"], rel=1e-6)
+    # the curves in two processes: the same keys in the same order, the same values
+    both = variants.run(Case(), model="fe1d", num=3, workers=2)
+    assert list(both.mu) == list(study.mu)
+    for k in study.mu:
+        assert both.mu[k] == pytest.approx(study.mu[k], rel=1e-9)
 
 
 def test_studies_compute_only():

@@ -55,6 +55,9 @@ def add_parser(subparsers) -> None:
             k.add_argument("--num", type=positive_int,
                            help="number of roller speeds from 0.5 to 40 m/s (default 24, "
                                 "--quick 6)")
+            k.add_argument("--workers", type=positive_int, default=1,
+                           help="solve the eight curves in this many local processes "
+                                "(default 1; the same values, to rounding)")
 
 
 def _progress(message: str) -> None:
@@ -72,7 +75,7 @@ def _compute(args, case, progress):
     if kind == "lambda-table":
         return lambda_table.run(case, args.speed, quick=quick, progress=progress)
     if kind == "variants":
-        return variants.run(case, args.model, args.num, quick, progress)
+        return variants.run(case, args.model, args.num, quick, progress, args.workers)
     return report.run(case, quick, progress)
 
 

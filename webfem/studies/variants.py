@@ -19,6 +19,7 @@ import numpy as np
 
 from ..api import solve_along
 from ..case import Case
+from ..errors import InputError
 
 __all__ = ["COMBOS", "VariantsStudy", "run"]
 
@@ -60,22 +61,45 @@ class VariantsStudy:
 
 
 def run(case: Case, model: str = "fe2d", num: int | None = None, quick: bool = False,
-        progress: Callable[[str], None] | None = None) -> VariantsStudy:
+        progress: Callable[[str], None] | None = None, workers: int = 1) -> VariantsStudy:
     """Solve the four friction options of :data:`COMBOS` over ``num`` roller speeds (default
     24, or 6 with ``quick``) with the closed form and ``model``. ``progress`` receives one
-    line of text per curve."""
+    line of text per curve. ``workers`` > 1 solves the curves in that many local processes
+    (each curve is the same continuation path: the same values, to rounding)."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 256:
+        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
+                         "to 256")
     num = num if num is not None else (6 if quick else 24)
     speeds = np.geomspace(0.5, 40.0, num)
-    data, failed = {}, 0
-    for variant, dist in COMBOS:
-        base = case.updated({"friction.variant": variant, "friction.distribution": dist})
-        cases = [base.updated({"roller.speed": float(u)}) for u in speeds]
-        for m in ("closed-form", model):
-            mu = []
-            for r in solve_along(cases, m):
-                mu.append(float(r["mu"]) if r["converged"] else math.nan)
-            failed += sum(math.isnan(v) for v in mu)
-            data[(variant, dist, m)] = tuple(mu)
-            if progress:
-                progress(f"{variant:10s} {dist:11s} {m:11s} done")
+    tasks = [(case.updated({"friction.variant": variant, "friction.distribution": dist}),
+              tuple(float(u) for u in speeds), m)
+             for variant, dist in COMBOS for m in ("closed-form", model)]
+    curves: dict = {}
+
+    def record(i, mu):
+        variant, dist = COMBOS[i // 2]
+        curves[i] = mu
+        if progress:
+            progress(f"{variant:10s} {dist:11s} {tasks[i][2]:11s} done")
+
+    if workers == 1:
+        for i, args in enumerate(tasks):
+            record(i, _curve(*args))
+    else:
+        from ..sweeps.workers import Processes
+
+        pool = Processes(min(workers, len(tasks)))
+        try:
+            pool.run(list(enumerate(tasks)), record, task=_curve)
+        finally:
+            pool.close()
+    data = {COMBOS[i // 2] + (tasks[i][2],): curves[i] for i in range(len(tasks))}
+    failed = sum(math.isnan(v) for mu in data.values() for v in mu)
     return VariantsStudy(model, tuple(float(u) for u in speeds), data, failed, quick)
+
+
+def _curve(base: Case, speeds: tuple, model: str) -> tuple:
+    """mu along ``speeds`` with continuation (NaN where a solve did not converge)."""
+    cases = [base.updated({"roller.speed": u}) for u in speeds]
+    return tuple(float(r["mu"]) if r["converged"] else math.nan
+                 for r in solve_along(cases, model))
