@@ -118,6 +118,16 @@ def test_pattern_is_shared():
     assert A.has_canonical_format
 
 
+@pytest.mark.parametrize("n, top", [(0, 5), (1, 5), (1000, 7), (200_000, 10**9), (50, 2**60)])
+def test_unique_inverse_is_numpys(n, top):
+    """The Pattern's unique by a stable sort returns np.unique's keys and inverse exactly."""
+    keys = np.random.default_rng(n).integers(0, top, n, dtype=np.int64)
+    got, inv = fast._unique_inverse(keys)
+    want, want_inv = np.unique(keys, return_inverse=True)
+    assert np.array_equal(got, want) and np.array_equal(inv, want_inv.ravel())
+    assert np.array_equal(got[inv], keys)
+
+
 
 @pytest.fixture(scope="module", params=["full", "cell"])
 def grooved(request):

@@ -152,7 +152,7 @@ class Pattern:
         rows = np.concatenate([np.ravel(r) for r, _ in blocks]).astype(np.int64)
         cols = np.concatenate([np.ravel(c) for _, c in blocks]).astype(np.int64)
         self.sizes = [np.size(r) for r, _ in blocks]
-        keys, self.slot = np.unique(rows * self.shape[1] + cols, return_inverse=True)
+        keys, self.slot = _unique_inverse(rows * self.shape[1] + cols)
         r = keys // self.shape[1]
         self.indices = (keys % self.shape[1]).astype(np.int32)
         self.indptr = np.searchsorted(r, np.arange(self.shape[0] + 1)).astype(np.int32)
@@ -165,6 +165,23 @@ class Pattern:
         A = sp.csr_matrix(self.shape)
         A.data, A.indices, A.indptr = data, self.indices, self.indptr
         return A
+
+
+def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(keys, return_inverse=True)``, element for element (tests/test_fast.py).
+
+    np.unique argsorts with quicksort: most of the cost of a 2-D :class:`Pattern` (~5e5
+    keys). The keys of element blocks come in long sorted runs (each element's DOFs, element
+    after element), which numpy's stable sort merges about twice as fast.
+    """
+    order = np.argsort(keys, kind="stable")
+    ordered = keys[order]
+    new = np.empty(keys.size, dtype=bool)
+    new[:1] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=new[1:])
+    inverse = np.empty(keys.size, dtype=np.intp)
+    inverse[order] = np.cumsum(new, dtype=np.intp) - 1
+    return ordered[new], inverse
 
 
 class LineAssembler:
