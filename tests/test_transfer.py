@@ -11,8 +11,10 @@ import pytest
 from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
 
 from webfem.fem.mesh import graded_nodes, line_mesh
-from webfem.fem.transfer import (film_mesh, quadrature_matrices, tensor_interpolation,
-                                 web_values, width_nodes)
+import scipy.sparse as sp
+
+from webfem.fem.transfer import (cellwise_matrices, film_mesh, quadrature_matrices,
+                                 tensor_interpolation, web_values, width_nodes)
 
 
 def _hermite(X, x):
@@ -55,6 +57,42 @@ def test_web_values_are_the_hermite_basis_at_the_film_points(order):
     assert values.shape == (4,) + fbasis.dx.shape
     assert np.all(line.p[0, line.t[0, cell]] <= np.asarray(fbasis.global_coordinates()[0])
                   .min(axis=1) + 1e-12)
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_cellwise_matrices_are_scipys(order):
+    """The quadrature-point matrices built in canonical CSR form directly equal scipy's
+    construction from (point, DOF) pairs, array for array: values, indices, indptr."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    wbasis = Basis(line_mesh(X), ElementLineHermite(), intorder=6)
+    fbasis = Basis(film_mesh(X, width_nodes(3.0)), ElementQuad2() if order == 2
+                   else ElementQuad1(), intorder=4 if order == 2 else 3)
+    T = quadrature_matrices(fbasis, wbasis)
+    nel, nq = fbasis.dx.shape
+
+    def scipys(values, dofs, n):
+        pts = np.broadcast_to(np.arange(nel * nq).reshape(1, nel, nq), values.shape)
+        cols = np.broadcast_to(np.asarray(dofs)[:, :, None], values.shape)
+        return sp.csr_matrix((values.ravel(), (pts.ravel(), cols.ravel())),
+                             shape=(nel * nq, n))
+
+    fields = [fbasis.basis[i][0] for i in range(fbasis.Nbfun)]
+    want = {"M": scipys(T["M_loc"], T["M_dofs"], wbasis.N),
+            "B0": scipys(np.array([np.asarray(f) for f in fields]), fbasis.element_dofs,
+                         fbasis.N),
+            "BX": scipys(np.array([f.grad[0] for f in fields]), fbasis.element_dofs, fbasis.N),
+            "BZ": scipys(np.array([f.grad[1] for f in fields]), fbasis.element_dofs, fbasis.N)}
+    for key, B in want.items():
+        A = T[key]
+        assert A.shape == B.shape and A.has_canonical_format, key
+        for a, b in [(A.data, B.data), (A.indices, B.indices), (A.indptr, B.indptr)]:
+            assert np.array_equal(a, b), key
+    # unsorted DOFs within a cell are sorted per row
+    dofs = np.array([[3, 0], [1, 2]])
+    vals = np.arange(8.0).reshape(2, 2, 2)
+    A, = cellwise_matrices([vals], dofs, 4)
+    assert A.has_canonical_format
+    assert np.array_equal(A.toarray(), [[0, 4, 0, 0], [0, 5, 0, 1], [2, 0, 6, 0], [3, 0, 7, 0]])
 
 
 def _dof_order(wbasis, X):
