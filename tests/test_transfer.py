@@ -8,13 +8,15 @@ seconds at 1e4 points). Both must agree with scikit-fem's own evaluation.
 
 import numpy as np
 import pytest
-from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
+from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
+                   ElementQuad2)
 
 from webfem.fem.mesh import graded_nodes, line_mesh
 import scipy.sparse as sp
 
-from webfem.fem.transfer import (cellwise_matrices, film_mesh, quadrature_matrices,
-                                 tensor_interpolation, web_values, width_nodes)
+from webfem.fem.transfer import (cellwise_matrices, film_mesh, interpolate_values,
+                                 line_probes, quadrature_matrices, tensor_interpolation,
+                                 web_values, width_nodes)
 
 
 def _hermite(X, x):
@@ -93,6 +95,38 @@ def test_cellwise_matrices_are_scipys(order):
     A, = cellwise_matrices([vals], dofs, 4)
     assert A.has_canonical_format
     assert np.array_equal(A.toarray(), [[0, 4, 0, 0], [0, 5, 0, 1], [2, 0, 6, 0], [3, 0, 7, 0]])
+
+
+@pytest.mark.parametrize("elem", [ElementLineHermite, ElementLineP1, ElementLineP2])
+def test_line_probes_are_scikit_fems(elem):
+    """line_probes is scikit-fem's probes entry for entry (the same cells, also for points
+    on nodes and at both ends, and the same values), on a mesh whose nodes are not in order;
+    a point outside the mesh is refused like probes does."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    rng = np.random.default_rng(3)
+    line = line_mesh(X)
+    line = type(line)(line.p[:, ::-1].copy(), (line.p.shape[1] - 1 - line.t)[::-1].copy())
+    basis = Basis(line, elem())
+    x = np.concatenate([X, rng.uniform(X[0], X[-1], 500), [X[0], X[-1], 0.0]])
+    got, want = line_probes(basis, x), basis.probes(x[None, :])
+    for a, b in [(got.row, want.row), (got.col, want.col), (got.data, want.data)]:
+        assert np.array_equal(a, b)
+    w = rng.normal(size=basis.N)
+    assert np.array_equal(got @ w, want @ w)
+    for outside in (X[0] - 1e-9, X[-1] + 1e-9):
+        with pytest.raises(ValueError):
+            line_probes(basis, np.array([outside]))
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_interpolate_values_are_scikit_fems(order):
+    """The film's values at its quadrature points equal scikit-fem's interpolate's bit for
+    bit (the width average of the results is computed from them)."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    fbasis = Basis(film_mesh(X, width_nodes(3.0)), ElementQuad2() if order == 2
+                   else ElementQuad1(), intorder=4 if order == 2 else 3)
+    p = np.random.default_rng(4).normal(size=fbasis.N)
+    assert np.array_equal(interpolate_values(fbasis, p), np.asarray(fbasis.interpolate(p)))
 
 
 def _dof_order(wbasis, X):
