@@ -97,6 +97,23 @@ def test_cellwise_matrices_are_scipys(order):
     assert np.array_equal(A.toarray(), [[0, 4, 0, 0], [0, 5, 0, 1], [2, 0, 6, 0], [3, 0, 7, 0]])
 
 
+@pytest.mark.parametrize("nb", [3, 6, 13])
+def test_cellwise_matrices_of_cells_numbered_unlike(nb):
+    """Cells whose DOFs come in many different orders (a few, more than 32, and too many
+    functions to code an order) give scipy's matrix all the same."""
+    rng = np.random.default_rng(nb)
+    nel, nq, n = 200, 3, 40
+    dofs = np.array([rng.choice(n, nb, replace=False) for _ in range(nel)]).T
+    vals = rng.normal(size=(nb, nel, nq))
+    A, = cellwise_matrices([vals], dofs, n)
+    pts = np.broadcast_to(np.arange(nel * nq).reshape(1, nel, nq), vals.shape)
+    B = sp.csr_matrix((vals.ravel(), (pts.ravel(), np.broadcast_to(dofs[:, :, None],
+                                                                   vals.shape).ravel())),
+                      shape=(nel * nq, n))
+    for a, b in [(A.data, B.data), (A.indices, B.indices), (A.indptr, B.indptr)]:
+        assert np.array_equal(a, b)
+
+
 @pytest.mark.parametrize("elem", [ElementLineHermite, ElementLineP1, ElementLineP2])
 def test_line_probes_are_scikit_fems(elem):
     """line_probes is scikit-fem's probes entry for entry (the same cells, also for points
