@@ -154,7 +154,7 @@ class Pattern:
         self.sizes = [np.size(r) for r, _ in blocks]
         keys, self.slot = _unique_inverse(rows * self.shape[1] + cols)
         r = keys // self.shape[1]
-        self.indices = (keys % self.shape[1]).astype(np.int32)
+        self.indices = (keys - r * self.shape[1]).astype(np.int32)     # cheaper than %
         self.indptr = np.searchsorted(r, np.arange(self.shape[0] + 1)).astype(np.int32)
         self.nnz = keys.size
 
@@ -281,16 +281,17 @@ class FilmAssembler:
         M = T["M"].tocsr()
         self.gx, self.gz = f.grad_c[0][:, 0], f.grad_c[0][:, 1]
         self.gw, self.hw = w.grad_c[0][:, 0], w.hess_c[0]
-        # the width average's load on the web: -(1/width) M^T dx B0, constant
-        self.Jwp = (-(M.T @ sp.diags(T["dx"]) @ T["B0"]) / width).tocoo()
+        # the width average's load on the web: -(1/width) M^T dx B0, constant (the product
+        # is CSC: to CSR directly, canonical, not through COO)
+        self.Jwp = (-(M.T @ sp.diags(T["dx"]) @ T["B0"]) / width).tocsr()
+        Jwp = self.Jwp.tocoo()
         blocks = [f.pairs(f.all, f.all),
                   (np.broadcast_to(f.dofs[:, None, :], (f.dofs.shape[0],) + wd.shape),
                    np.broadcast_to(wd[None, :, :] + nP, (f.dofs.shape[0],) + wd.shape)),
-                  (self.Jwp.row + nP, self.Jwp.col),
+                  (Jwp.row + nP, Jwp.col),
                   w.pairs(w.all, w.all, nP, nP)]
         self.pattern = Pattern(blocks, (nP + w.N, nP + w.N))
-        self.Jwp_data = self.Jwp.data
-        self.Jwp = self.Jwp.tocsr()
+        self.Jwp_data = Jwp.data
         self.ww_membrane = w.bilinear(self.gw, self.gw, w.dx)
         self.ww_bending = w.bilinear(self.hw, self.hw, w.dx)
         self.tests_pp = f.tests([self.gx, self.gz, f.phi])

@@ -94,7 +94,9 @@ class FoilBearing2D:
             fixed_p = np.concatenate([fixed_p, np.flatnonzero(
                 off >= 0.5 * grooves.land * (1.0 - 1e-9))])
         self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
-        self.free = np.setdiff1d(np.arange(self.n_dofs), self.fixed)
+        is_free = np.ones(self.n_dofs, dtype=bool)
+        is_free[self.fixed] = False
+        self.free = np.flatnonzero(is_free)          # np.setdiff1d's answer, without a sort
         self._xw = np.asarray(self.wbasis.global_coordinates()[0])
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
