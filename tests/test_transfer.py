@@ -8,12 +8,11 @@ seconds at 1e4 points). Both must agree with scikit-fem's own evaluation.
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
                    ElementQuad2)
 
 from webfem.fem.mesh import graded_nodes, line_mesh
-import scipy.sparse as sp
-
 from webfem.fem.transfer import (cellwise_matrices, film_mesh, interpolate_values,
                                  line_probes, quadrature_matrices, tensor_interpolation,
                                  web_values, width_nodes)
