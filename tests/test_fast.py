@@ -118,6 +118,16 @@ def test_pattern_is_shared():
     assert A.has_canonical_format
 
 
+@pytest.mark.parametrize("n, top", [(0, 5), (1, 5), (1000, 7), (200_000, 10**9), (50, 2**60)])
+def test_unique_inverse_is_numpys(n, top):
+    """The Pattern's unique by a stable sort returns np.unique's keys and inverse exactly."""
+    keys = np.random.default_rng(n).integers(0, top, n, dtype=np.int64)
+    got, inv = fast._unique_inverse(keys)
+    want, want_inv = np.unique(keys, return_inverse=True)
+    assert np.array_equal(got, want) and np.array_equal(inv, want_inv.ravel())
+    assert np.array_equal(got[inv], keys)
+
+
 
 @pytest.fixture(scope="module", params=["full", "cell"])
 def grooved(request):
@@ -153,3 +163,27 @@ def test_grooved_film(grooved, newton):
     smooth = FoilBearing2D(p.X, p.Z, web_edges=p.web_edges)
     assert _relative(smooth.residual(u, prm), fast_F) > 1e-6
     assert _relative(p.residual(u, PRM), fast_F) > 1e-6
+
+
+def test_film_fields_are_scikit_fems(film):
+    """The 2-D problem's gap and width-averaged pressure at points (web probes kept per point
+    set, the average kept for the last state) equal scikit-fem's probes and interpolate to
+    the last bit, for a second state too, and the kept values cannot be changed from outside."""
+    import scipy.sparse.linalg as spla
+    from skfem import BilinearForm
+
+    from webfem.fem import forms
+
+    p, u = film
+    X = np.concatenate([p.X, 0.5 * (p.X[1:] + p.X[:-1])])
+    probes = p.wbasis.probes(X[None, :])
+    mass = spla.splu(BilinearForm(lambda a, b, w: a * b).assemble(p.wbasis).tocsc())
+    for v in (u, np.where(np.arange(u.size) < p.nP, 0.5 * u, u)):
+        w = v[p.nP:]
+        assert np.array_equal(p.gap(v, PRM, X), probes @ w + forms.departure(X, PRM.beta))
+        Pq = np.asarray(p.fbasis.interpolate(v[:p.nP])).ravel()
+        avg = mass.solve(p.T["M"].T @ (p.T["dx"] * Pq) / p.width)
+        got = p.pressure(v, X)
+        assert np.array_equal(got, probes @ avg)
+        p.width_average(v)[:] = 0.0
+        assert np.array_equal(p.pressure(v, X), got)

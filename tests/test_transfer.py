@@ -8,10 +8,13 @@ seconds at 1e4 points). Both must agree with scikit-fem's own evaluation.
 
 import numpy as np
 import pytest
-from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
+import scipy.sparse as sp
+from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
+                   ElementQuad2)
 
 from webfem.fem.mesh import graded_nodes, line_mesh
-from webfem.fem.transfer import (film_mesh, quadrature_matrices, tensor_interpolation,
+from webfem.fem.transfer import (cellwise_matrices, film_mesh, interpolate_values,
+                                 line_probes, quadrature_matrices, tensor_interpolation,
                                  web_values, width_nodes)
 
 
@@ -55,6 +58,91 @@ def test_web_values_are_the_hermite_basis_at_the_film_points(order):
     assert values.shape == (4,) + fbasis.dx.shape
     assert np.all(line.p[0, line.t[0, cell]] <= np.asarray(fbasis.global_coordinates()[0])
                   .min(axis=1) + 1e-12)
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_cellwise_matrices_are_scipys(order):
+    """The quadrature-point matrices built in canonical CSR form directly equal scipy's
+    construction from (point, DOF) pairs, array for array: values, indices, indptr."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    wbasis = Basis(line_mesh(X), ElementLineHermite(), intorder=6)
+    fbasis = Basis(film_mesh(X, width_nodes(3.0)), ElementQuad2() if order == 2
+                   else ElementQuad1(), intorder=4 if order == 2 else 3)
+    T = quadrature_matrices(fbasis, wbasis)
+    nel, nq = fbasis.dx.shape
+
+    def scipys(values, dofs, n):
+        pts = np.broadcast_to(np.arange(nel * nq).reshape(1, nel, nq), values.shape)
+        cols = np.broadcast_to(np.asarray(dofs)[:, :, None], values.shape)
+        return sp.csr_matrix((values.ravel(), (pts.ravel(), cols.ravel())),
+                             shape=(nel * nq, n))
+
+    fields = [fbasis.basis[i][0] for i in range(fbasis.Nbfun)]
+    want = {"M": scipys(T["M_loc"], T["M_dofs"], wbasis.N),
+            "B0": scipys(np.array([np.asarray(f) for f in fields]), fbasis.element_dofs,
+                         fbasis.N),
+            "BX": scipys(np.array([f.grad[0] for f in fields]), fbasis.element_dofs, fbasis.N),
+            "BZ": scipys(np.array([f.grad[1] for f in fields]), fbasis.element_dofs, fbasis.N)}
+    for key, B in want.items():
+        A = T[key]
+        assert A.shape == B.shape and A.has_canonical_format, key
+        for a, b in [(A.data, B.data), (A.indices, B.indices), (A.indptr, B.indptr)]:
+            assert np.array_equal(a, b), key
+    # unsorted DOFs within a cell are sorted per row
+    dofs = np.array([[3, 0], [1, 2]])
+    vals = np.arange(8.0).reshape(2, 2, 2)
+    A, = cellwise_matrices([vals], dofs, 4)
+    assert A.has_canonical_format
+    assert np.array_equal(A.toarray(), [[0, 4, 0, 0], [0, 5, 0, 1], [2, 0, 6, 0], [3, 0, 7, 0]])
+
+
+@pytest.mark.parametrize("nb", [3, 6, 13])
+def test_cellwise_matrices_of_cells_numbered_unlike(nb):
+    """Cells whose DOFs come in many different orders (a few, more than 32, and too many
+    functions to code an order) give scipy's matrix all the same."""
+    rng = np.random.default_rng(nb)
+    nel, nq, n = 200, 3, 40
+    dofs = np.array([rng.choice(n, nb, replace=False) for _ in range(nel)]).T
+    vals = rng.normal(size=(nb, nel, nq))
+    A, = cellwise_matrices([vals], dofs, n)
+    pts = np.broadcast_to(np.arange(nel * nq).reshape(1, nel, nq), vals.shape)
+    B = sp.csr_matrix((vals.ravel(), (pts.ravel(), np.broadcast_to(dofs[:, :, None],
+                                                                   vals.shape).ravel())),
+                      shape=(nel * nq, n))
+    for a, b in [(A.data, B.data), (A.indices, B.indices), (A.indptr, B.indptr)]:
+        assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("elem", [ElementLineHermite, ElementLineP1, ElementLineP2])
+def test_line_probes_are_scikit_fems(elem):
+    """line_probes is scikit-fem's probes entry for entry (the same cells, also for points
+    on nodes and at both ends, and the same values), on a mesh whose nodes are not in order;
+    a point outside the mesh is refused like probes does."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    rng = np.random.default_rng(3)
+    line = line_mesh(X)
+    line = type(line)(line.p[:, ::-1].copy(), (line.p.shape[1] - 1 - line.t)[::-1].copy())
+    basis = Basis(line, elem())
+    x = np.concatenate([X, rng.uniform(X[0], X[-1], 500), [X[0], X[-1], 0.0]])
+    got, want = line_probes(basis, x), basis.probes(x[None, :])
+    for a, b in [(got.row, want.row), (got.col, want.col), (got.data, want.data)]:
+        assert np.array_equal(a, b)
+    w = rng.normal(size=basis.N)
+    assert np.array_equal(got @ w, want @ w)
+    for outside in (X[0] - 1e-9, X[-1] + 1e-9):
+        with pytest.raises(ValueError):
+            line_probes(basis, np.array([outside]))
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_interpolate_values_are_scikit_fems(order):
+    """The film's values at its quadrature points equal scikit-fem's interpolate's bit for
+    bit (the width average of the results is computed from them)."""
+    X = graded_nodes(12.0, 6.0, level=0)
+    fbasis = Basis(film_mesh(X, width_nodes(3.0)), ElementQuad2() if order == 2
+                   else ElementQuad1(), intorder=4 if order == 2 else 3)
+    p = np.random.default_rng(4).normal(size=fbasis.N)
+    assert np.array_equal(interpolate_values(fbasis, p), np.asarray(fbasis.interpolate(p)))
 
 
 def _dof_order(wbasis, X):

@@ -24,7 +24,7 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["width_nodes", "film_mesh", "quadrature_matrices", "web_values",
-           "tensor_interpolation"]
+           "cellwise_matrices", "line_probes", "interpolate_values", "tensor_interpolation"]
 
 
 def width_nodes(lam: float, level: int = 0, half: bool = True, fine: float = 0.25,
@@ -66,22 +66,52 @@ def film_mesh(X: np.ndarray, Z: np.ndarray, web_edges: bool = True):
     return MeshQuad.init_tensor(np.asarray(X, float), np.asarray(Z, float)).with_boundaries(bnd)
 
 
-def _basis_matrix(basis, what: str) -> sp.csr_matrix:
-    """(n_points x N) matrix of basis values (``what='value'``) or X/Z derivatives."""
-    nel = basis.nelems
-    nqp = basis.X.shape[-1]
-    rows, cols, vals = [], [], []
-    pts = np.arange(nel * nqp).reshape(nel, nqp)
-    for i in range(basis.Nbfun):
-        phi = basis.basis[i][0]
-        v = np.asarray(phi) if what == "value" else phi.grad[0 if what == "x" else 1]
-        rows.append(pts)
-        cols.append(np.broadcast_to(basis.element_dofs[i][:, None], (nel, nqp)))
-        vals.append(v)
-    return sp.csr_matrix((np.concatenate([a.ravel() for a in vals]),
-                          (np.concatenate([a.ravel() for a in rows]),
-                           np.concatenate([a.ravel() for a in cols]))),
-                         shape=(nel * nqp, basis.N))
+def cellwise_matrices(values: list[np.ndarray], dofs: np.ndarray,
+                      n: int) -> list[sp.csr_matrix]:
+    """(points x n) CSR matrices, one per array of ``values``: the row for quadrature point
+    q of cell e holds ``values[k][:, e, q]`` in the columns ``dofs[:, e]`` (distinct within
+    a cell).
+
+    Built in canonical form directly: each row's columns are its cell's DOFs, so sorting the
+    DOFs once per cell gives the index arrays, and the values are gathered in that order.
+    Each equals ``csr_matrix((values[k], (point, dof)))`` array for array
+    (tests/test_transfer.py), at a fraction of the cost (scipy sorts and sums ~5e5 entries
+    there).
+    """
+    nb, nel, nq = values[0].shape
+    dofs = np.asarray(dofs)
+    order = np.argsort(dofs, axis=0)                                # (nb, nel)
+    # the cells of a tensor mesh number their DOFs alike: a few distinct orders, each
+    # applied to its cells by whole rows (several times cheaper than entry by entry)
+    kinds = (np.unique(np.ravel_multi_index(tuple(order), (nb,) * nb), return_index=True,
+                       return_inverse=True) if nb <= 12 else None)
+
+    def gather(v):
+        if kinds is None or kinds[0].size > 32:
+            return np.take_along_axis(v, order[:, :, None], axis=0).transpose(1, 2, 0).ravel()
+        if kinds[0].size == 1:
+            return np.moveaxis(v[order[:, 0]], 0, -1).ravel()
+        out = np.empty((nel, nq, nb), dtype=v.dtype)
+        for k, first in enumerate(kinds[1]):
+            cells = np.flatnonzero(kinds[2] == k)
+            out[cells] = np.moveaxis(v[order[:, first]][:, cells], 0, -1)
+        return out.ravel()
+
+    idx_dtype = np.int32 if max(n, nb * nel * nq) < 2**31 else np.int64
+    cols = np.take_along_axis(dofs, order, axis=0).T.astype(idx_dtype)     # (nel, nb)
+    indices = np.broadcast_to(cols[:, None, :], (nel, nq, nb)).ravel()
+    indptr = np.arange(0, nb * nel * nq + 1, nb, dtype=idx_dtype)
+    return [sp.csr_matrix((gather(v), indices.copy(), indptr.copy()), shape=(nel * nq, n))
+            for v in values]
+
+
+def _basis_matrices(basis) -> list[sp.csr_matrix]:
+    """(n_points x N) matrices of the basis's values and X and Z derivatives."""
+    fields = [basis.basis[i][0] for i in range(basis.Nbfun)]
+    return cellwise_matrices([np.array([np.asarray(phi) for phi in fields]),
+                              np.array([phi.grad[0] for phi in fields]),
+                              np.array([phi.grad[1] for phi in fields])],
+                             basis.element_dofs, basis.N)
 
 
 def web_values(film_basis, web_basis) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -106,12 +136,59 @@ def web_values(film_basis, web_basis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     s = (xq - x0[cell][:, None]) / (x1 - x0)[cell][:, None]          # reference coordinate
     s = np.round(s, 12)
     ref, where = np.unique(s, return_inverse=True)
-    # a new element object: scikit-fem 12's Hermite element caches mesh data
-    at = Basis(line, type(web_basis.elem)(), quadrature=(ref[None, :], np.ones(ref.size)))
+    # the web basis's own element: scikit-fem 12's Hermite element caches data of its mesh
+    # (the inverse Vandermonde matrices), which is this mesh
+    at = Basis(line, web_basis.elem, quadrature=(ref[None, :], np.ones(ref.size)))
     vals = np.array([np.asarray(at.basis[i][0]) for i in range(at.Nbfun)])  # (4, cells, ref)
     where = where.reshape(s.shape)
     values = vals[:, cell[:, None], where]
     return cell, np.asarray(web_basis.element_dofs)[:, cell], values
+
+
+def line_probes(basis, x) -> sp.coo_matrix:
+    """scikit-fem's ``basis.probes(x[None, :])`` for a basis on a line mesh (the web's), with
+    the points located by a sorted search.
+
+    scikit-fem's line element finder compares every point with every cell (points x cells
+    booleans: most of the cost of evaluating the web at the film's nodes or at the wrap's
+    samples). The cell chosen for each point is the finder's (a point on a node goes to the
+    cell on its right, the last node to the last cell), and the rest is ``probes``' own
+    code, so the matrix is the same, entry for entry (tests/test_transfer.py).
+    """
+    x = np.asarray(x, float)
+    cells = _line_cells(basis.mesh, x)
+    pts = basis.mapping.invF(x[None, :, None], tind=cells)
+    phis = np.array([basis.elem.gbasis(basis.mapping, pts, k, tind=cells)[0]
+                     for k in range(basis.Nbfun)]).flatten()
+    rows = np.tile(np.arange(x.size, dtype=np.int32), basis.Nbfun)
+    cols = basis.element_dofs[:, cells].flatten()
+    return sp.coo_matrix((phis, (rows, cols)), shape=(x.size, basis.N))
+
+
+def _line_cells(line, x: np.ndarray) -> np.ndarray:
+    """The cell of a line mesh holding each x, as scikit-fem's ``element_finder`` picks it:
+    the cell whose right end is the first node to the right of x (x on the last node: the
+    last cell). Raises ValueError for a point outside the mesh, as it does."""
+    node = np.argsort(line.p[0])
+    xs = line.p[0, node]
+    right = np.full(line.p.shape[1], -1, dtype=np.int32)    # node -> cell it is the right end of
+    right[line.t[np.argmax(line.p[0, line.t], 0), np.arange(line.t.shape[1])]] = \
+        np.arange(line.t.shape[1], dtype=np.int32)
+    i = np.searchsorted(xs, np.where(x == xs[-1], 0.5 * (xs[-2] + xs[-1]), x), side="right")
+    if np.any(i == 0) or np.any(i == xs.size):
+        raise ValueError("Point is outside of the mesh.")
+    return right[node[i]]
+
+
+def interpolate_values(basis, w: np.ndarray) -> np.ndarray:
+    """``np.asarray(basis.interpolate(w))`` for a scalar element: the values at the
+    quadrature points, summed in scikit-fem's order (so equal to the last bit), without the
+    gradients and the DOF split scikit-fem computes too (a third of the cost each)."""
+    dofs = basis.element_dofs
+    out = 0.0 * (w[dofs[0]][:, None] * np.asarray(basis.basis[0][0]))
+    for i in range(basis.Nbfun):
+        out += w[dofs[i]][:, None] * np.asarray(basis.basis[i][0])
+    return out
 
 
 def quadrature_matrices(film_basis, web_basis) -> dict:
@@ -123,12 +200,8 @@ def quadrature_matrices(film_basis, web_basis) -> dict:
     """
     xq = np.asarray(film_basis.global_coordinates()[0]).ravel()
     _, dofs, values = web_values(film_basis, web_basis)
-    nel, nq = values.shape[1:]
-    pts = np.broadcast_to(np.arange(nel * nq).reshape(1, nel, nq), values.shape)
-    M = sp.csr_matrix((values.ravel(), (pts.ravel(), np.broadcast_to(
-        dofs[:, :, None], values.shape).ravel())), shape=(nel * nq, web_basis.N))
-    return {"M": M, "B0": _basis_matrix(film_basis, "value"),
-            "BX": _basis_matrix(film_basis, "x"), "BZ": _basis_matrix(film_basis, "z"),
+    B0, BX, BZ = _basis_matrices(film_basis)
+    return {"M": cellwise_matrices([values], dofs, web_basis.N)[0], "B0": B0, "BX": BX, "BZ": BZ,
             "dx": np.asarray(film_basis.dx).ravel(), "x": xq, "M_loc": values,
             "M_dofs": dofs}
 

@@ -37,7 +37,8 @@ from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard
 from ..fem.scaling import FoilParameters
 from ..fem.grooves import GroovePattern, groove_nodes
-from ..fem.transfer import film_mesh, quadrature_matrices, tensor_interpolation, width_nodes
+from ..fem.transfer import (film_mesh, interpolate_values, line_probes, quadrature_matrices,
+                             tensor_interpolation, width_nodes)
 from ..fem.web import web_coefficients, web_jacobian, web_residual
 from ..physics.friction import friction_for
 from ..progress import stage
@@ -93,12 +94,17 @@ class FoilBearing2D:
             fixed_p = np.concatenate([fixed_p, np.flatnonzero(
                 off >= 0.5 * grooves.land * (1.0 - 1e-9))])
         self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
-        self.free = np.setdiff1d(np.arange(self.n_dofs), self.fixed)
+        is_free = np.ones(self.n_dofs, dtype=bool)
+        is_free[self.fixed] = False
+        self.free = np.flatnonzero(is_free)          # np.setdiff1d's answer, without a sort
         self._xw = np.asarray(self.wbasis.global_coordinates()[0])
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass = None
         self._assembler = None
+        #: the web basis at point sets asked for again (the nodes: refinement, admissibility
+        #: and results), by the points' bytes; the last width average (film DOFs, result)
+        self._probes, self._average = {}, None
         #: the 1-D problem and state this problem started from (width continuation)
         self.line_start = None
         #: True when its start is a solved state carried over from another mesh
@@ -165,9 +171,20 @@ class FoilBearing2D:
         return sp.bmat([[Jpp, Jpw], [Jwp, Jww]], format="csr")
 
     # -- fields ---------------------------------------------------------------------------
+    def probes(self, X) -> sp.coo_matrix:
+        """The web basis at scaled points X (scikit-fem's ``probes``, through
+        :func:`~webfem.fem.transfer.line_probes`), kept for point sets asked for again."""
+        X = np.asarray(X, float)
+        key = X.tobytes()
+        if key not in self._probes:
+            if len(self._probes) >= PROBE_SETS:
+                self._probes.clear()
+            self._probes[key] = line_probes(self.wbasis, X)
+        return self._probes[key]
+
     def gap(self, u, prm, X) -> np.ndarray:
         X = np.asarray(X, float)
-        return self.wbasis.probes(X[None, :]) @ self._split(u)[1] + forms.departure(X, prm.beta)
+        return self.probes(X) @ self._split(u)[1] + forms.departure(X, prm.beta)
 
     def width_average(self, u) -> np.ndarray:
         """Hermite DOFs of the width-averaged film pressure: the L2 projection of
@@ -180,22 +197,27 @@ class FoilBearing2D:
                 return a * b
 
             self._mass = spla.splu(mass.assemble(self.wbasis).tocsc())
-        Pq = np.asarray(self.fbasis.interpolate(self._split(u)[0])).ravel()
-        return self._mass.solve(self.T["M"].T @ (self.T["dx"] * Pq) / self.width)
+        p = self._split(u)[0]
+        # the results ask for the pressure of one state several times (fields, summary,
+        # admissibility): the projection is kept for the last film DOFs
+        if self._average is None or not np.array_equal(self._average[0], p):
+            Pq = interpolate_values(self.fbasis, p).ravel()
+            self._average = (p.copy(), self._mass.solve(
+                self.T["M"].T @ (self.T["dx"] * Pq) / self.width))
+        return self._average[1].copy()
 
     def land_average(self, u) -> np.ndarray:
         """Hermite DOFs of the film pressure averaged over the lands only (as
         :meth:`width_average`; the whole width on a smooth roller)."""
         land = (self.groove_q.ravel() == 0.0).astype(float)
-        Pq = np.asarray(self.fbasis.interpolate(self._split(u)[0])).ravel()
+        Pq = interpolate_values(self.fbasis, self._split(u)[0]).ravel()
         width = float(np.sum(self.T["dx"] * land)) / float(np.sum(self.T["dx"])) * self.width
         self.width_average(u)          # builds the mass matrix
         return self._mass.solve(self.T["M"].T @ (self.T["dx"] * land * Pq) / width)
 
     def pressure(self, u, X) -> np.ndarray:
         """Width-averaged film pressure at X (through :meth:`width_average`)."""
-        X = np.asarray(X, float)
-        return self.wbasis.probes(X[None, :]) @ self.width_average(u)
+        return self.probes(X) @ self.width_average(u)
 
     def film_pressure_at_vertices(self, u) -> np.ndarray:
         """Film pressure at the mesh vertices (for VTU)."""
@@ -208,18 +230,21 @@ class FoilBearing2D:
         average."""
         u = np.zeros(self.n_dofs)
         xn = self.X
-        Hn = problem1d.gap(u1d, prm, xn)
-        u[self.iWv] = Hn - forms.departure(xn, prm.beta)
         d = 1e-6
         xa, xb = np.clip(xn - d, xn[0], xn[-1]), np.clip(xn + d, xn[0], xn[-1])
-        u[self.iWx] = ((problem1d.gap(u1d, prm, xb) - forms.departure(xb, prm.beta))
-                       - (problem1d.gap(u1d, prm, xa) - forms.departure(xa, prm.beta))) / (xb - xa)
+        # one evaluation at the nodes and both sides (each point's value is its own)
+        Hn, Hb, Ha = problem1d.gap(u1d, prm, np.concatenate([xn, xb, xa])).reshape(3, -1)
+        u[self.iWv] = Hn - forms.departure(xn, prm.beta)
+        u[self.iWx] = ((Hb - forms.departure(xb, prm.beta))
+                       - (Ha - forms.departure(xa, prm.beta))) / (xb - xa)
         if not pressure:
             return u
         loc = self.fbasis.doflocs
         lam = max(abs(self.Z[0]), abs(self.Z[-1]))
         shape = 1.5 * (1.0 - (loc[1] / lam) ** 2) if self.web_edges else 1.0
-        u[:self.nP] = problem1d.pressure(u1d, loc[0]) * shape
+        # the film's DOFs lie on a few lines X = const: the 1-D pressure once per line
+        x, line = np.unique(loc[0], return_inverse=True)
+        u[:self.nP] = problem1d.pressure(u1d, x)[line] * shape
         u[self.fixed] = 0.0
         return u
 
@@ -284,6 +309,9 @@ class FoilBearing2D:
         return frozen_coefficient_picard(self, u0, prm, o.tol, o.omega, o.aitken,
                                          o.picard_max_iter, o.backtrack or None, o.anderson)
 
+
+#: Point sets whose web probes a problem keeps (the nodes and the results' samples).
+PROBE_SETS = 8
 
 #: The film-only solve before a coupled Newton stops at this fraction of its first residual:
 #: it only gives Newton a pressure consistent with the web (one or two steps; solving it to
@@ -364,7 +392,8 @@ def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> Film:
     """Film fields at the 2-D mesh vertices, physical units (for VTU and pictures)."""
     pts = problem.mesh.p
     Hs = case.h_scale
-    H = problem.gap(u, prm, pts[0])
+    x, line = np.unique(pts[0], return_inverse=True)     # the vertices lie on the X nodes
+    H = problem.gap(u, prm, x)[line]
     groove = (problem.grooves.depth_at(pts[1]) if problem.grooves is not None
               else np.zeros_like(H))
     on_land = groove == 0.0
@@ -381,7 +410,7 @@ def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> Film:
 
 def self_probe(problem: FoilBearing2D, dofs, X) -> np.ndarray:
     """The web-space function with Hermite ``dofs`` at scaled points X."""
-    return problem.wbasis.probes(np.asarray(X, float)[None, :]) @ dofs
+    return problem.probes(X) @ dofs
 
 
 #: A wide web is solved on the periodic groove cell from this many groove pitches across it
