@@ -10,10 +10,11 @@ around it (start, refinement, summary) is :mod:`webfem.models.fe1d` on the share
 from __future__ import annotations
 
 import numpy as np
-from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2
+from skfem import Basis, ElementLineP1, ElementLineP2
 
 from ..errors import InputError
 from ..fem import fast, forms
+from ..fem.hermite import HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard, picard
@@ -41,8 +42,9 @@ class FoilBearing1D:
         self.X = np.asarray(X, float)
         self.mesh = line_mesh(self.X)
         pressure = ElementLineP2() if order == 2 else ElementLineP1()
-        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
-        element = pressure * ElementLineHermite()
+        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12); HermiteLine
+        # is scikit-fem's, bitwise, with its four functions evaluated in one pass
+        element = pressure * HermiteLine()
         self.basis = Basis(self.mesh, element, intorder=6)
         # nodal (Gauss-Lobatto) quadrature lumps the sink for P1 (no pressure wiggles where
         # the film is thin); P2 keeps Gauss and relies on the adaptive refinement instead
@@ -51,9 +53,10 @@ class FoilBearing1D:
                            if order == 1 else self.basis)
         self.order = order
         # split bases once: building them is most of the cost of interpolating a state
-        self._split = {id(b): b.split_bases() for b in (self.basis, self.sink_basis)}
-        self._x = {id(b): np.asarray(b.global_coordinates()[0])
-                   for b in (self.basis, self.sink_basis)}
+        bases = [self.basis] if self.sink_basis is self.basis else [self.basis,
+                                                                     self.sink_basis]
+        self._split = {id(b): b.split_bases() for b in bases}
+        self._x = {id(b): np.asarray(b.global_coordinates()[0]) for b in bases}
         self.iP, self.iW_all = self.basis.split_indices()
         self.iW = self.basis.nodal_dofs[1]        # web deflection at the nodes
         self.iWx = self.basis.nodal_dofs[2]       # its slope
@@ -63,7 +66,9 @@ class FoilBearing1D:
         self.free = np.setdiff1d(np.arange(self.basis.N), self.fixed)
         self.free_P = np.intersect1d(self.iP, self.free)
         self.free_W = np.intersect1d(self.iW_all, self.free)
-        self.pbasis, self.wbasis = self.basis.split_bases()
+        self.pbasis, self.wbasis = self._split[id(self.basis)]
+        # point values as pbasis/wbasis.probes(x) @ dofs (bitwise), without the probe matrix
+        self._probe_p, self._probe_w = LineProbes(self.pbasis), LineProbes(self.wbasis)
         self._assembler = None
 
     @property
@@ -146,12 +151,12 @@ class FoilBearing1D:
     def gap(self, u, prm: FoilParameters, X: np.ndarray) -> np.ndarray:
         """Scaled gap H at points X (exact Hermite evaluation)."""
         X = np.asarray(X, float)
-        Wv = self.wbasis.probes(X[None, :]) @ u[self.iW_all]
+        Wv = self._probe_w(X, u[self.iW_all])
         return Wv + forms.departure(X, prm.beta)
 
     def pressure(self, u, X: np.ndarray) -> np.ndarray:
         """Scaled film pressure P at points X."""
-        return self.pbasis.probes(np.asarray(X, float)[None, :]) @ u[self.iP]
+        return self._probe_p(np.asarray(X, float), u[self.iP])
 
     # -- solvers ------------------------------------------------------------------------
     def _newton(self, u0, prm, tol, max_iter, rows=None):

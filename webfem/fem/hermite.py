@@ -1,0 +1,156 @@
+"""The 1-D web's cubic Hermite element, evaluated as scikit-fem does but once per point set.
+
+scikit-fem 12's :class:`~skfem.element.ElementLineHermite` is an ``ElementGlobal``: each call
+of ``gbasis(mapping, X, i, tind)`` maps the points to global coordinates, evaluates the
+monomials 1, x, x^2, x^3 and their derivatives there (Python lambdas) and combines them with
+column i of the cached inverse Vandermonde matrices. A basis, its ``split_bases`` and every
+``probes`` call ask for the four functions one at a time at the same points (and the
+composite pressure x Hermite element asks for function 0 once more per pressure function), so
+the same work is done up to eight times; it was the largest cost of building a 1-D problem
+and of evaluating the gap at points.
+
+:class:`HermiteLine` computes all four functions in one pass and keeps the last point set's
+result. The arithmetic is scikit-fem's own, operation by operation and in the same order, so
+the values are bitwise the same (tests/test_hermite.py). That matters: the global monomial
+basis is ill-conditioned on short cells far from X = 0 (the values carry relative errors of
+about 1e-8), and a more accurate formula would move every answer by that much.
+
+:class:`LineProbes` is ``basis.probes(x) @ y`` of a scalar 1-D basis without the probe matrix:
+scikit-fem's line element finder compares every point with every cell (quadratic in the
+mesh size); here a ``searchsorted`` on the sorted nodes picks the same cells, and the sum over
+the local functions runs in the order of the sparse product, so again the values are bitwise
+the same.
+
+Examples
+--------
+>>> import numpy as np
+>>> from skfem import Basis, MeshLine
+>>> b = Basis(MeshLine(np.linspace(0.0, 2.0, 5)), HermiteLine(), intorder=4)
+>>> y = np.zeros(b.N); y[b.nodal_dofs[0]] = b.doflocs[0, b.nodal_dofs[0]] ** 2
+>>> y[b.nodal_dofs[1]] = 2 * b.doflocs[0, b.nodal_dofs[1]]          # x^2 and its slope
+>>> x = np.array([0.3, 1.25, 2.0])
+>>> bool(np.array_equal(LineProbes(b)(x, y), b.probes(x[None, :]) @ y))
+True
+>>> bool(np.allclose(LineProbes(b)(x, y), x ** 2))
+True
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from skfem import ElementLineHermite
+from skfem.element.discrete_field import DiscreteField
+
+__all__ = ["HermiteLine", "LineProbes"]
+
+
+def _same(a, b) -> bool:
+    """The same point set or element list (None for all elements)."""
+    if a is None or b is None:
+        return a is None and b is None
+    return a.shape == b.shape and bool(np.array_equal(a, b))
+
+
+class HermiteLine(ElementLineHermite):
+    """:class:`~skfem.element.ElementLineHermite` with all four functions evaluated at once.
+
+    ``gbasis(mapping, X, i, tind)`` returns what scikit-fem's does, bitwise; the four
+    functions at the last (mapping, X, tind) are kept, so the calls for i = 1, 2, 3 (and
+    repeated calls for the same points) cost a copy. Like scikit-fem's element it caches mesh
+    data (the inverse Vandermonde matrices): use a new instance per mesh.
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._last = None          # (mapping, X, tind, [(value, grad, hess) per function])
+
+    def _all(self, mapping, X, tind):
+        """The four functions at X: scikit-fem's ``ElementGlobal.gbasis`` loop, with the
+        monomials evaluated once and the sum over them for all four functions at a time."""
+        if tind is None:
+            tind = np.arange(mapping.mesh.t.shape[1])
+        if self.V is None:
+            # as ElementGlobal.gbasis: the power basis and the inverted Vandermonde matrices
+            self._pbasis_init(self.maxdeg, self.dim, self.derivatives, self.tensorial_basis)
+            self.V = np.linalg.inv(self._eval_dofs(mapping.mesh))
+        V = self.V[tind]
+        x = mapping.F(X, tind=tind)
+        n_fun = V.shape[2]
+        U = [np.zeros((n_fun,) + (self.dim,) * k + x[0].shape)
+             for k in range(self.derivatives + 1)]
+        # V[:, itr, :] as (function, element, 1): each product is scikit-fem's
+        # V[:, itr, i][:, None] * monomial, and the terms are added in the same order
+        Vt = [np.ascontiguousarray(V[:, itr, :].T)[:, :, None] for itr in range(V.shape[1])]
+        for k in range(self.derivatives + 1):
+            diffs = [()] if k == 0 else [(0,) * k]          # dim = 1: one derivative per order
+            for itr in range(len(self._pbasis[()])):
+                for diff in diffs:
+                    U[k][(slice(None),) + diff] += Vt[itr] * self._pbasis[diff][itr](*x)
+        return [(U[0][i], U[1][i], U[2][i]) for i in range(n_fun)]
+
+    def gbasis(self, mapping, X, i, tind=None):
+        last = self._last
+        if last is None or last[0] is not mapping or not _same(last[1], X) \
+                or not _same(last[2], tind):
+            last = self._last = (mapping, np.array(X), None if tind is None else
+                                 np.array(tind), self._all(mapping, X, tind))
+        if not 0 <= i < 4:
+            self._index_error()
+        value, grad, hess = last[3][i]
+        # copies: a caller may keep or change what it is given
+        return (DiscreteField(value=value.copy(), grad=grad.copy(), hess=hess.copy()),)
+
+
+class LineProbes:
+    """Values at points of a finite element function of a scalar basis on a line mesh:
+    ``LineProbes(basis)(x, y)`` equals ``basis.probes(x[None, :]) @ y`` bitwise.
+
+    Parameters
+    ----------
+    basis : a scikit-fem cell basis on a ``MeshLine`` with one scalar component (the
+        pressure or the web part of :meth:`~skfem.assembly.CellBasis.split_bases`).
+    """
+
+    def __init__(self, basis):
+        self.basis = basis
+        mesh = basis.mesh
+        p = mesh.p[0]
+        # scikit-fem's finder: the cell whose right node is the first node right of x
+        self._ix = np.argsort(p)
+        self._sorted = p[self._ix]
+        right = mesh.t[np.argmax(p[mesh.t], 0), np.arange(mesh.t.shape[1])]
+        self._cell_of_right = np.full(p.size, -1, dtype=np.int64)
+        self._cell_of_right[right] = np.arange(mesh.t.shape[1])
+        self._dofs = np.asarray(basis.element_dofs)
+
+    def cells(self, x: np.ndarray) -> np.ndarray:
+        """The cell holding each point, as scikit-fem's ``MeshLine1.element_finder`` picks it
+        (a point on a node belongs to the cell on its right, the last node to the last cell).
+
+        Raises
+        ------
+        ValueError
+            For a point outside the mesh (as scikit-fem).
+        """
+        xin = x.copy()
+        xin[x == self._sorted[-1]] = self._sorted[-2:].mean()
+        j = np.digitize(xin, self._sorted)
+        if np.any(j >= self._sorted.size):
+            raise ValueError("Point is outside of the mesh.")
+        cells = self._cell_of_right[self._ix[j]]
+        if np.any(cells < 0):
+            raise ValueError("Point is outside of the mesh.")
+        return cells.astype(np.int32)
+
+    def __call__(self, x, y) -> np.ndarray:
+        """The function with global DOFs ``y`` at the points ``x`` (1-D array)."""
+        x = np.asarray(x, float).reshape(1, -1)
+        b = self.basis
+        cells = self.cells(x[0])
+        pts = b.mapping.invF(x[:, :, np.newaxis], tind=cells)
+        out = np.zeros(x.shape[1])
+        # the sparse product adds the local functions' terms in this order
+        for k in range(b.Nbfun):
+            phi = np.asarray(b.elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel()
+            out += phi * y[self._dofs[k, cells]]
+        return out
