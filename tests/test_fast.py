@@ -153,3 +153,18 @@ def test_grooved_film(grooved, newton):
     smooth = FoilBearing2D(p.X, p.Z, web_edges=p.web_edges)
     assert _relative(smooth.residual(u, prm), fast_F) > 1e-6
     assert _relative(p.residual(u, PRM), fast_F) > 1e-6
+
+
+@pytest.mark.parametrize("stacked", [False, True])
+def test_line_contraction_is_bilinear(stacked):
+    """The 1-D Jacobian's contraction with its test side laid out once per mesh is
+    BasisData.bilinear's einsum (the same batched product: equal to rounding, in practice
+    bit for bit)."""
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
+    a = p.assembler
+    rng = np.random.default_rng(5)
+    test = np.stack([a.gq, a.q]) if stacked else a.v
+    trial = rng.standard_normal((2,) + a.q.shape if stacked else a.v.shape)
+    got = fast._contract(fast._test_layout(test), trial)
+    np.testing.assert_allclose(got, fast.BasisData.bilinear(test, trial), rtol=1e-14,
+                               atol=1e-14 * np.max(np.abs(got)))
