@@ -187,15 +187,21 @@ class FoilBearing1D:
             info.update(converged=out.converged, residual=out.residual, reason=out.reason)
             return out.u, info
         # continuation from the Eshel-Elrod problem: permeation K, compressibility d and
-        # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold)
+        # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold).
+        # From its solution the full problem is tried at once: a far better start than the
+        # cold one (on a 111-case grid all 20 continued solves took this jump, 7-12 Newton
+        # steps fewer each, the same mesh and gaps to 1e-12; issue 14). If the jump fails
+        # (after at most ``first_try`` steps, as the direct attempt), the steps are 0.25,
+        # then doubled (0.25, 0.75, 1), each failure quartering the step.
         target = prm
         u = self.initial_guess(target.homotopy(0.0))
         s, ds, steps = 0.0, 0.25, []
-        first = True
+        first, jump = True, False
         while True:
             p = target.homotopy(s)
             with stage(f"Eshel-Elrod continuation, s = {s:.3g}"):
-                out = self._newton(self.consistent_pressure(u, p), p, tol, max_iter)
+                out = self._newton(self.consistent_pressure(u, p), p, tol,
+                                   first_try if jump else max_iter)
             info["iterations"] += out.iterations
             info["history"] += list(out.history)
             if out.converged:
@@ -206,9 +212,13 @@ class FoilBearing1D:
                                 steps=steps)
                     return u, info
                 ds = min(2.0 * ds, 1.0) if not first else ds
-                first = False
                 s_prev = s
-                s = min(1.0, s + ds)
+                s, jump = (1.0, True) if first else (min(1.0, s + ds), False)
+                first = False
+            elif jump:
+                # the jump from s = 0 failed: the stepped schedule from there
+                jump = False
+                s = min(1.0, s_prev + ds)
             else:
                 if first:
                     info.update(converged=False, residual=out.residual,
