@@ -225,12 +225,22 @@ class LineAssembler:
         self._t_gq = _test_layout(gq)
         self._t_v = _test_layout(v)
         self._t_sink = _test_layout(self.s.phi) if self.s is not None else None
+        self._last = None       # (u, args, sink, coefficients) of the last state
 
     def _coefficients(self, u, args, sink):
+        """The forms' coefficients at the quadrature points for the state u, kept for the
+        last (u, args, sink): Newton asks for the Jacobian at the state whose residual its
+        line search has just evaluated."""
+        last = self._last
+        if last is not None and last[2] == sink and last[1] == args \
+                and np.array_equal(last[0], u):
+            return last[3]
         b = self.b
         P, dP = b.interpolate(u, 0)
         W, dW, ddW = b.interpolate(u, 1, hess=True)
-        return self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink), dW[0], ddW
+        out = self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink), dW[0], ddW
+        self._last = (np.array(u, float, copy=True), args, sink, out)
+        return out
 
     def residual(self, u, prm, sink: bool) -> np.ndarray:
         b, dx = self.b, self.b.dx
