@@ -68,29 +68,24 @@ def test_gbasis_repeated_and_new_points():
 @pytest.mark.parametrize("order", [1, 2])
 def test_probes_bitwise(order):
     """Pressure and web values at points (inside cells, on nodes, on the mesh's ends) as
-    ``basis.probes(x) @ y`` gives them; points outside the mesh are refused."""
+    ``basis.probes(x) @ y`` gives them, from the split bases or read from the composite
+    basis; points outside the mesh are refused."""
     p = FoilBearing1D(X, order=order)
     rng = np.random.default_rng(3)
     u = rng.standard_normal(p.n_dofs)
     x = np.concatenate([X, 0.5 * (X[1:] + X[:-1]), rng.uniform(X[0], X[-1], 500),
                         [X[0], X[-1], X[-1], X[0] + 1e-12]])
-    for probes, basis, dofs in [(LineProbes(p.wbasis), p.wbasis, p.iW_all),
-                                (LineProbes(p.pbasis), p.pbasis, p.iP)]:
+    for c, (basis, dofs) in enumerate([(p.pbasis, p.iP), (p.wbasis, p.iW_all)]):
         want = basis.probes(x[None, :]) @ u[dofs]
-        np.testing.assert_array_equal(probes(x, u[dofs]), want)
-        np.testing.assert_array_equal(probes.cells(x),
+        split, composite = LineProbes(basis), LineProbes(p.basis, component=c)
+        np.testing.assert_array_equal(split(x, u[dofs]), want)
+        np.testing.assert_array_equal(composite(x, u), want)
+        np.testing.assert_array_equal(split.cells(x),
                                       basis.mesh.element_finder(mapping=basis.mapping)(x))
         for outside in ([X[0] - 1.0], [X[-1] + 1.0]):
             with pytest.raises(ValueError):
-                probes(np.array(outside), u[dofs])
-    H = p.gap(u, _prm(), x)
-    assert H.shape == x.shape
-
-
-def _prm():
-    from webfem.fem.scaling import FoilParameters
-    return FoilParameters(beta=30.0, K=0.0, d=0.0, ds=0.0, slip=0.0, Dn=0.0, c=0.0, S=0.1,
-                          contact=0.0, floor=0.02, H_c=0.3)
+                composite(np.array(outside), u)
+    np.testing.assert_array_equal(p.pressure(u, x), p.pbasis.probes(x[None, :]) @ u[p.iP])
 
 
 def test_hermite_interpolates_cubics():

@@ -102,16 +102,19 @@ class HermiteLine(ElementLineHermite):
 
 
 class LineProbes:
-    """Values at points of a finite element function of a scalar basis on a line mesh:
+    """Values at points of a finite element function on a line mesh:
     ``LineProbes(basis)(x, y)`` equals ``basis.probes(x[None, :]) @ y`` bitwise.
 
     Parameters
     ----------
-    basis : a scikit-fem cell basis on a ``MeshLine`` with one scalar component (the
-        pressure or the web part of :meth:`~skfem.assembly.CellBasis.split_bases`).
+    basis : a scikit-fem cell basis on a ``MeshLine`` with one scalar component, or a
+        composite basis (``ElementComposite``) and ``component``.
+    component : for a composite basis, the part to evaluate: ``LineProbes(basis, c)(x, u)``
+        with the composite DOF vector ``u`` equals ``split_bases()[c].probes(x[None, :])
+        @ u[split_indices()[c]]`` bitwise, without building the split basis.
     """
 
-    def __init__(self, basis):
+    def __init__(self, basis, component: int | None = None):
         self.basis = basis
         mesh = basis.mesh
         p = mesh.p[0]
@@ -121,7 +124,18 @@ class LineProbes:
         right = mesh.t[np.argmax(p[mesh.t], 0), np.arange(mesh.t.shape[1])]
         self._cell_of_right = np.full(p.size, -1, dtype=np.int64)
         self._cell_of_right[right] = np.arange(mesh.t.shape[1])
-        self._dofs = np.asarray(basis.element_dofs)
+        dofs = np.asarray(basis.element_dofs)
+        if component is None:
+            self._elem, self._dofs = basis.elem, dofs
+        else:
+            # the composite's local functions of this component, in the sub-element's order
+            # (the split basis's): (sub-element function, composite function)
+            elem = basis.elem
+            local = sorted((k, i) for i, (c, k) in
+                           ((i, elem._deduce_bfun(i)) for i in range(basis.Nbfun))
+                           if c == component)
+            self._elem = elem.elems[component]
+            self._dofs = dofs[[i for _, i in local]]
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """The cell holding each point, as scikit-fem's ``MeshLine1.element_finder`` picks it
@@ -143,14 +157,15 @@ class LineProbes:
         return cells.astype(np.int32)
 
     def __call__(self, x, y) -> np.ndarray:
-        """The function with global DOFs ``y`` at the points ``x`` (1-D array)."""
+        """The function with global DOFs ``y`` (of ``basis``) at the points ``x`` (1-D
+        array)."""
         x = np.asarray(x, float).reshape(1, -1)
         b = self.basis
         cells = self.cells(x[0])
         pts = b.mapping.invF(x[:, :, np.newaxis], tind=cells)
         out = np.zeros(x.shape[1])
         # the sparse product adds the local functions' terms in this order
-        for k in range(b.Nbfun):
-            phi = np.asarray(b.elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel()
+        for k in range(self._dofs.shape[0]):
+            phi = np.asarray(self._elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel()
             out += phi * y[self._dofs[k, cells]]
         return out

@@ -52,24 +52,39 @@ class FoilBearing1D:
                                  quadrature=(np.array([[0.0, 1.0]]), np.array([0.5, 0.5])))
                            if order == 1 else self.basis)
         self.order = order
-        # split bases once: building them is most of the cost of interpolating a state
-        bases = [self.basis] if self.sink_basis is self.basis else [self.basis,
-                                                                     self.sink_basis]
-        self._split = {id(b): b.split_bases() for b in bases}
-        self._x = {id(b): np.asarray(b.global_coordinates()[0]) for b in bases}
         self.iP, self.iW_all = self.basis.split_indices()
         self.iW = self.basis.nodal_dofs[1]        # web deflection at the nodes
         self.iWx = self.basis.nodal_dofs[2]       # its slope
-        fixed = np.concatenate([self.basis.get_dofs({"left", "right"}).all("u^1"),
-                                self.basis.get_dofs({"left", "right"}).all("u^2")])
+        ends = self.basis.get_dofs({"left", "right"})
+        fixed = np.concatenate([ends.all("u^1"), ends.all("u^2")])
         self.fixed = np.unique(fixed)
         self.free = np.setdiff1d(np.arange(self.basis.N), self.fixed)
         self.free_P = np.intersect1d(self.iP, self.free)
         self.free_W = np.intersect1d(self.iW_all, self.free)
-        self.pbasis, self.wbasis = self._split[id(self.basis)]
-        # point values as pbasis/wbasis.probes(x) @ dofs (bitwise), without the probe matrix
-        self._probe_p, self._probe_w = LineProbes(self.pbasis), LineProbes(self.wbasis)
+        # point values as pbasis/wbasis.probes(x) @ u[iP]/u[iW_all] (bitwise), read from
+        # the composite basis: no probe matrix, no split basis
+        self._probe_p = LineProbes(self.basis, component=0)
+        self._probe_w = LineProbes(self.basis, component=1)
         self._assembler = None
+        self._split, self._x = {}, {}        # of the reference assembly, built on first use
+
+    def _split_of(self, basis):
+        """``basis.split_bases()`` and its quadrature points' X, built once (building them
+        is most of the cost of interpolating a state with the reference forms)."""
+        if id(basis) not in self._split:
+            self._split[id(basis)] = basis.split_bases()
+            self._x[id(basis)] = np.asarray(basis.global_coordinates()[0])
+        return self._split[id(basis)], self._x[id(basis)]
+
+    @property
+    def pbasis(self):
+        """The pressure part of :attr:`basis` (scikit-fem's split basis)."""
+        return self._split_of(self.basis)[0][0]
+
+    @property
+    def wbasis(self):
+        """The web part of :attr:`basis` (scikit-fem's split basis)."""
+        return self._split_of(self.basis)[0][1]
 
     @property
     def n_dofs(self) -> int:
@@ -79,13 +94,13 @@ class FoilBearing1D:
                newton: bool | None = None) -> dict:
         """Form arguments at ``basis``'s quadrature points for the state ``u``: for the
         residual (``newton=None``), or for the Jacobian (exact if ``newton`` else Picard's)."""
-        bp, bw = self._split[id(basis)]
+        (bp, bw), x = self._split_of(basis)
         P = bp.interpolate(u[self.iP])
         if sink:
             return {"P": np.asarray(P), "K": prm.K, "d": prm.ds,
                     "newton": 1.0 if newton or newton is None else 0.0}
         W = bw.interpolate(u[self.iW_all])
-        coef = forms.coefficients(self._x[id(basis)], np.asarray(P), P.grad[0], np.asarray(W),
+        coef = forms.coefficients(x, np.asarray(P), P.grad[0], np.asarray(W),
                                   prm.as_form_args(), sink=self.order == 2)
         if newton is None:
             return {"W": W, "Dn": prm.Dn, **coef}
@@ -151,12 +166,12 @@ class FoilBearing1D:
     def gap(self, u, prm: FoilParameters, X: np.ndarray) -> np.ndarray:
         """Scaled gap H at points X (exact Hermite evaluation)."""
         X = np.asarray(X, float)
-        Wv = self._probe_w(X, u[self.iW_all])
+        Wv = self._probe_w(X, u)
         return Wv + forms.departure(X, prm.beta)
 
     def pressure(self, u, X: np.ndarray) -> np.ndarray:
         """Scaled film pressure P at points X."""
-        return self._probe_p(np.asarray(X, float), u[self.iP])
+        return self._probe_p(np.asarray(X, float), u)
 
     # -- solvers ------------------------------------------------------------------------
     def _newton(self, u0, prm, tol, max_iter, rows=None):
