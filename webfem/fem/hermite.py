@@ -60,9 +60,20 @@ class HermiteLine(ElementLineHermite):
     data (the inverse Vandermonde matrices): use a new instance per mesh.
     """
 
+    #: the power basis (monomials and their derivatives as functions), the same for every
+    #: instance: built once, not per mesh
+    _shared_pbasis: dict = {}
+
     def __init__(self):
         super().__init__()
         self._last = None          # (mapping, X, tind, [(value, grad, hess) per function])
+
+    def _pbasis_init(self, maxdeg, dim, Ndiff, is_tensorial=False):
+        key = (maxdeg, dim, Ndiff, is_tensorial)
+        if key not in HermiteLine._shared_pbasis:
+            super()._pbasis_init(maxdeg, dim, Ndiff, is_tensorial)
+            HermiteLine._shared_pbasis[key] = self._pbasis
+        self._pbasis = HermiteLine._shared_pbasis[key]
 
     def _all(self, mapping, X, tind):
         """The four functions at X: scikit-fem's ``ElementGlobal.gbasis`` loop, with the
