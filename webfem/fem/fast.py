@@ -215,15 +215,15 @@ class LineAssembler:
         if self.s is not None:
             blocks.append(self.s.pairs(self.s.index[0], self.s.index[0]))
         self.pattern = Pattern(blocks, (b.N, b.N))
-        # the state-independent blocks: -dp v, dw' v' and dw'' v'' (times Dn)
-        self.wp = -b.bilinear(v, q, b.dx)
-        self.ww_membrane = b.bilinear(gv, gv, b.dx)
-        self.ww_bending = b.bilinear(hv, hv, b.dx)
-        # the test functions of the Jacobian's state-dependent blocks, laid out once for
-        # _contract (its operand as numpy's einsum optimiser prepares it on every call)
+        # the test functions of the Jacobian's blocks, laid out once for _contract (its
+        # operand as numpy's einsum optimiser prepares it on every call)
         self._t_pp = _test_layout(np.stack([gq, q]))
         self._t_gq = _test_layout(gq)
         self._t_v = _test_layout(v)
+        # the state-independent blocks: -dp v, dw' v' and dw'' v'' (times Dn)
+        self.wp = -_contract(self._t_v, q * b.dx)
+        self.ww_membrane = _contract(_test_layout(gv), gv * b.dx)
+        self.ww_bending = _contract(_test_layout(hv), hv * b.dx)
         self._t_sink = _test_layout(self.s.phi) if self.s is not None else None
         self._last = None       # (u, args, sink, coefficients) of the last state
 
