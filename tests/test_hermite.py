@@ -99,3 +99,32 @@ def test_hermite_interpolates_cubics():
     y[b.nodal_dofs[1]] = 3 * xn[b.nodal_dofs[1]] ** 2 - 1
     x = np.linspace(X[0], X[-1], 301)
     np.testing.assert_allclose(LineProbes(b)(x, y), x**3 - x, rtol=1e-7, atol=1e-7)
+
+
+@pytest.mark.parametrize("pressure", [ElementLineP1, ElementLineP2])
+def test_composite_function_map(pressure):
+    """Composite's memoised map of local functions is scikit-fem's ElementComposite's."""
+    from skfem import ElementComposite
+
+    from webfem.fem.hermite import Composite
+
+    ours, theirs = Composite(pressure(), HermiteLine()), pressure() * ElementLineHermite()
+    for i in range(len(theirs.doflocs)):
+        assert tuple(map(int, ours._deduce_bfun(i))) == tuple(map(int, theirs._deduce_bfun(i)))
+    np.testing.assert_array_equal(ours.doflocs, theirs.doflocs)
+    assert isinstance(ours, ElementComposite)
+
+
+@pytest.mark.parametrize("nodes", [X, np.array([0.0, 1.0]), np.array([0.0, 1e-9, 1.0]),
+                                   np.array([-1.0, 1.0 - 1e-12, 1.0])])
+def test_line_mesh_boundaries(nodes):
+    """line_mesh's end sets are what scikit-fem's midpoint test gives."""
+    from skfem import MeshLine
+
+    lo, hi = nodes[0], nodes[-1]
+    want = MeshLine(nodes).with_boundaries({"left": lambda x: np.isclose(x[0], lo),
+                                            "right": lambda x: np.isclose(x[0], hi)})
+    got = line_mesh(nodes)
+    for name in ("left", "right"):
+        np.testing.assert_array_equal(got.boundaries[name], want.boundaries[name])
+        assert got.boundaries[name].dtype == want.boundaries[name].dtype

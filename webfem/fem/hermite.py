@@ -38,10 +38,10 @@ True
 from __future__ import annotations
 
 import numpy as np
-from skfem import ElementLineHermite
+from skfem import ElementComposite, ElementLineHermite
 from skfem.element.discrete_field import DiscreteField
 
-__all__ = ["HermiteLine", "LineProbes"]
+__all__ = ["Composite", "HermiteLine", "LineProbes"]
 
 
 def _same(a, b) -> bool:
@@ -62,8 +62,18 @@ def _composite_functions(elem) -> list:
     key = tuple(type(e) for e in elem.elems)
     if key not in _COMPOSITE:
         n = sum(len(e.doflocs) for e in elem.elems)
-        _COMPOSITE[key] = [tuple(int(v) for v in elem._deduce_bfun(i)) for i in range(n)]
+        _COMPOSITE[key] = [tuple(int(v) for v in ElementComposite._deduce_bfun(elem, i))
+                           for i in range(n)]
     return _COMPOSITE[key]
+
+
+class Composite(ElementComposite):
+    """``ElementComposite`` (what ``P2() * HermiteLine()`` makes) with its map from a local
+    function to (component, function) computed once per element types: scikit-fem derives it
+    anew on each of the 14 calls a basis makes."""
+
+    def _deduce_bfun(self, i: int):
+        return _composite_functions(self)[i]
 
 
 class HermiteLine(ElementLineHermite):

@@ -14,7 +14,7 @@ from skfem import Basis, ElementLineP1, ElementLineP2
 
 from ..errors import InputError
 from ..fem import fast, forms
-from ..fem.hermite import HermiteLine, LineProbes
+from ..fem.hermite import Composite, HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard, picard
@@ -44,7 +44,7 @@ class FoilBearing1D:
         pressure = ElementLineP2() if order == 2 else ElementLineP1()
         # a new Hermite element per mesh: it caches mesh data (scikit-fem 12); HermiteLine
         # is scikit-fem's, bitwise, with its four functions evaluated in one pass
-        element = pressure * HermiteLine()
+        element = Composite(pressure, HermiteLine())      # pressure * HermiteLine()
         self.basis = Basis(self.mesh, element, intorder=6)
         # nodal (Gauss-Lobatto) quadrature lumps the sink for P1 (no pressure wiggles where
         # the film is thin); P2 keeps Gauss and relies on the adaptive refinement instead
