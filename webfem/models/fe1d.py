@@ -89,12 +89,15 @@ def _transfer(coarse: FoilBearing1D, u, prm, fine: FoilBearing1D) -> np.ndarray:
     up to the interpolation of P2 midpoints)."""
     v = np.zeros(fine.n_dofs)
     xn = fine.X
-    v[fine.iW] = coarse.gap(u, prm, xn) - forms.departure(xn, prm.beta)
     # slope of W: derivative of the Hermite interpolant through probes at +- a small offset
     d = 1e-7 * max(1.0, float(np.ptp(xn)))
     xa, xb = np.clip(xn - d, xn[0], xn[-1]), np.clip(xn + d, xn[0], xn[-1])
-    v[fine.iWx] = ((coarse.gap(u, prm, xb) - forms.departure(xb, prm.beta))
-                   - (coarse.gap(u, prm, xa) - forms.departure(xa, prm.beta))) / (xb - xa)
+    # one probe of the three point sets (point by point the same numbers as three)
+    n = xn.size
+    pts = np.concatenate([xn, xb, xa])
+    W = coarse.gap(u, prm, pts) - forms.departure(pts, prm.beta)
+    v[fine.iW] = W[:n]
+    v[fine.iWx] = (W[n:2 * n] - W[2 * n:]) / (xb - xa)
     xP = fine.basis.doflocs[0][fine.iP]
     v[fine.iP] = coarse.pressure(u, xP)
     v[fine.fixed] = 0.0
