@@ -204,7 +204,7 @@ class FoilBearing1D:
         # continuation from the Eshel-Elrod problem: permeation K, compressibility d and
         # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold).
         # From its solution the full problem is tried at once: a far better start than the
-        # cold one (on a 111-case grid all 20 continued solves took this jump, 7-12 Newton
+        # cold one (on a 110-case grid all 18 continued solves took this jump, 7-12 Newton
         # steps fewer each, the same mesh and gaps to 1e-12; issue 14). If the jump fails
         # (after at most ``first_try`` steps, as the direct attempt), the steps are 0.25,
         # then doubled (0.25, 0.75, 1), each failure quartering the step.
