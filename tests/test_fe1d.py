@@ -236,3 +236,24 @@ def test_cli_model_options(capsys):
     assert main(["solve", "cases/base.toml", "--model", "closed-form", "--opt",
                  "level=1"]) == 2
     assert "unknown closed-form option 'level'" in capsys.readouterr().err
+
+
+def test_problem_cache_keeps_the_recent_meshes(monkeypatch):
+    """Problems (starting and refined meshes) are built once per node set; beyond the cache
+    size the least recently used one goes, and a repeated solve reuses all of its meshes."""
+    monkeypatch.setattr(fe1d, "_CACHE", {})
+    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 3)
+    meshes = [graded_nodes(30.0, 20.0, level=0) * f for f in (1.0, 1.1, 1.2, 1.3)]
+    first = [fe1d._cached(X, 2) for X in meshes[:3]]
+    assert fe1d._cached(meshes[0].copy(), 2) is first[0]        # hit: now the most recent
+    fe1d._cached(meshes[3], 2)                                  # evicts meshes[1]
+    assert fe1d._cached(meshes[0], 2) is first[0] and fe1d._cached(meshes[2], 2) is first[2]
+    assert len(fe1d._CACHE) == 3 and fe1d._cached(meshes[1], 2) is not first[1]
+    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 12)
+    case = Case().updated({"roller.speed": 20.0})
+    a = fe1d.solve(case)
+    built = []
+    monkeypatch.setattr(fe1d, "FoilBearing1D", lambda *args, **kw: built.append(1))
+    b = fe1d.solve(case)
+    assert built == [] and b.state("problem") is a.state("problem")
+    assert b["h_min"] == pytest.approx(a["h_min"], rel=1e-9)
