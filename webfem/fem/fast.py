@@ -226,6 +226,7 @@ class LineAssembler:
         self.ww_bending = _contract(_test_layout(hv), hv * b.dx)
         self._t_sink = _test_layout(self.s.phi) if self.s is not None else None
         self._last = None       # (u, args, sink, coefficients) of the last state
+        self._geometry = {}     # beta: the roller's departure and the wrap at the points
 
     def _coefficients(self, u, args, sink):
         """The forms' coefficients at the quadrature points for the state u, kept for the
@@ -238,7 +239,12 @@ class LineAssembler:
         b = self.b
         P, dP = b.interpolate(u, 0)
         W, dW, ddW = b.interpolate(u, 1, hess=True)
-        out = self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink), dW[0], ddW
+        beta = args["beta"]
+        if beta not in self._geometry:
+            self._geometry = {beta: (self.forms.departure(b.x, beta),
+                                     self.forms.in_wrap(b.x, beta))}
+        out = (self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink,
+                                       geometry=self._geometry[beta]), dW[0], ddW)
         self._last = (np.array(u, float, copy=True), args, sink, out)
         return out
 
