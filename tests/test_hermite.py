@@ -128,3 +128,16 @@ def test_line_mesh_boundaries(nodes):
     for name in ("left", "right"):
         np.testing.assert_array_equal(got.boundaries[name], want.boundaries[name])
         assert got.boundaries[name].dtype == want.boundaries[name].dtype
+
+
+def test_probes_keep_recent_point_sets():
+    """A point set asked for again is evaluated from its kept values: the same numbers for
+    any DOF vector; only the last few point sets are kept."""
+    p = FoilBearing1D(X)
+    rng = np.random.default_rng(7)
+    probes = LineProbes(p.basis, component=1)
+    sets = [rng.uniform(X[0], X[-1], 50) for _ in range(probes.keep + 2)]
+    for x in sets + sets[::-1]:
+        u = rng.standard_normal(p.n_dofs)
+        np.testing.assert_array_equal(probes(x, u), p.wbasis.probes(x[None, :]) @ u[p.iW_all])
+    assert len(probes._tables) == probes.keep

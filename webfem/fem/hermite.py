@@ -150,8 +150,12 @@ class LineProbes:
         @ u[split_indices()[c]]`` bitwise, without building the split basis.
     """
 
+    #: point sets whose values are kept
+    keep = 4
+
     def __init__(self, basis, component: int | None = None):
         self.basis = basis
+        self._tables: dict = {}
         mesh = basis.mesh
         p = mesh.p[0]
         # scikit-fem's finder: the cell whose right node is the first node right of x
@@ -191,16 +195,28 @@ class LineProbes:
             raise ValueError("Point is outside of the mesh.")
         return cells.astype(np.int32)
 
+    def _table(self, x: np.ndarray):
+        """Per local function, its values at the points x and the DOFs it multiplies; the
+        last few point sets are kept (the driver asks for the nodes several times)."""
+        key = x.tobytes()
+        table = self._tables.pop(key, None)
+        if table is None:
+            b = self.basis
+            cells = self.cells(x)
+            pts = b.mapping.invF(x[None, :, None], tind=cells)
+            table = [(np.asarray(self._elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel(),
+                      self._dofs[k, cells]) for k in range(self._dofs.shape[0])]
+            while len(self._tables) >= self.keep:
+                self._tables.pop(next(iter(self._tables)))
+        self._tables[key] = table              # the most recently used last
+        return table
+
     def __call__(self, x, y) -> np.ndarray:
         """The function with global DOFs ``y`` (of ``basis``) at the points ``x`` (1-D
         array)."""
-        x = np.asarray(x, float).reshape(1, -1)
-        b = self.basis
-        cells = self.cells(x[0])
-        pts = b.mapping.invF(x[:, :, np.newaxis], tind=cells)
-        out = np.zeros(x.shape[1])
+        x = np.asarray(x, float).ravel()
+        out = np.zeros(x.size)
         # the sparse product adds the local functions' terms in this order
-        for k in range(self._dofs.shape[0]):
-            phi = np.asarray(self._elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel()
-            out += phi * y[self._dofs[k, cells]]
+        for phi, dofs in self._table(x):
+            out += phi * y[dofs]
         return out
