@@ -187,3 +187,33 @@ def test_film_fields_are_scikit_fems(film):
         assert np.array_equal(got, probes @ avg)
         p.width_average(v)[:] = 0.0
         assert np.array_equal(p.pressure(v, X), got)
+
+
+@pytest.mark.parametrize("stacked", [False, True])
+def test_line_contraction_is_bilinear(stacked):
+    """The 1-D Jacobian's contraction with its test side laid out once per mesh is
+    BasisData.bilinear's einsum (the same batched product: equal to rounding, in practice
+    bit for bit)."""
+    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
+    a = p.assembler
+    rng = np.random.default_rng(5)
+    test = np.stack([a.gq, a.q]) if stacked else a.v
+    trial = rng.standard_normal((2,) + a.q.shape if stacked else a.v.shape)
+    got = fast._contract(fast._test_layout(test), trial)
+    np.testing.assert_allclose(got, fast.BasisData.bilinear(test, trial), rtol=1e-14,
+                               atol=1e-14 * np.max(np.abs(got)))
+
+
+def test_line_coefficients_kept_for_the_last_state_only():
+    """The coefficients kept between a residual and a Jacobian at the same state are used
+    only for that state: a changed state (even changed in place) or parameters recompute."""
+    X = graded_nodes(PRM.beta, 6.0, level=0)
+    p, fresh = FoilBearing1D(X, order=2), FoilBearing1D(X, order=2)
+    u = _line_state(p)
+    p.residual(u, PRM)
+    np.testing.assert_array_equal(p.jacobian(u, PRM).toarray(), fresh.jacobian(u, PRM).toarray())
+    u[p.iW] *= 1.1                       # in place: the same array object, a new state
+    np.testing.assert_array_equal(p.residual(u, PRM), fresh.residual(u, PRM))
+    other = PRM.homotopy(0.5)
+    np.testing.assert_array_equal(p.jacobian(u, other).toarray(),
+                                  fresh.jacobian(u, other).toarray())

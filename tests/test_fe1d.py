@@ -136,6 +136,43 @@ def test_newton_cold_start_base_case(speed):
         assert r["h_center"] == pytest.approx(r["h_c"], rel=0.02)
 
 
+def _continued_problem():
+    """The base case at 20 m/s on mesh level 1, where the direct cold start stalls."""
+    case = Case().updated({"roller.speed": 20.0})
+    prm = FoilParameters.from_case(case)
+    pb = FoilBearing1D(graded_nodes(prm.beta, DEFAULTS.entry, level=1))
+    return pb, prm
+
+
+def test_continuation_jumps_from_eshel_elrod_to_the_full_problem():
+    """After a failed direct start the continuation solves s = 0, then s = 1 at once."""
+    pb, prm = _continued_problem()
+    u, info = pb.solve_newton(pb.initial_guess(prm), prm)
+    assert info["converged"] and info["steps"] == [0.0, 1.0]
+
+
+def test_continuation_steps_when_the_jump_fails(monkeypatch):
+    """A failed jump from s = 0 to 1 falls back to the steps 0.25, 0.75, 1, and ends at the
+    same solution."""
+    pb, prm = _continued_problem()
+    u_jump, _ = pb.solve_newton(pb.initial_guess(prm), prm)
+    newton, calls = pb._newton, []
+
+    def failing_jump(u0, p, tol, max_iter, rows=None):
+        out = newton(u0, p, tol, max_iter, rows)
+        calls.append(p.K)
+        # the second coupled solve at the full problem is the jump (the first is the
+        # direct attempt): report it failed
+        if rows is None and p.K == prm.K and calls.count(prm.K) == 4:
+            out.converged = False
+        return out
+
+    monkeypatch.setattr(pb, "_newton", failing_jump)
+    u, info = pb.solve_newton(pb.initial_guess(prm), prm)
+    assert info["converged"] and info["steps"] == [0.0, 0.25, 0.75, 1.0]
+    np.testing.assert_allclose(u, u_jump, rtol=0, atol=1e-8 * np.max(np.abs(u_jump)))
+
+
 @pytest.mark.parametrize("speed", [0.5, 40.0])
 def test_picard_and_newton_agree(speed):
     case = Case().updated({"roller.speed": speed})
@@ -199,3 +236,24 @@ def test_cli_model_options(capsys):
     assert main(["solve", "cases/base.toml", "--model", "closed-form", "--opt",
                  "level=1"]) == 2
     assert "unknown closed-form option 'level'" in capsys.readouterr().err
+
+
+def test_problem_cache_keeps_the_recent_meshes(monkeypatch):
+    """Problems (starting and refined meshes) are built once per node set; beyond the cache
+    size the least recently used one goes, and a repeated solve reuses all of its meshes."""
+    monkeypatch.setattr(fe1d, "_CACHE", {})
+    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 3)
+    meshes = [graded_nodes(30.0, 20.0, level=0) * f for f in (1.0, 1.1, 1.2, 1.3)]
+    first = [fe1d._cached(X, 2) for X in meshes[:3]]
+    assert fe1d._cached(meshes[0].copy(), 2) is first[0]        # hit: now the most recent
+    fe1d._cached(meshes[3], 2)                                  # evicts meshes[1]
+    assert fe1d._cached(meshes[0], 2) is first[0] and fe1d._cached(meshes[2], 2) is first[2]
+    assert len(fe1d._CACHE) == 3 and fe1d._cached(meshes[1], 2) is not first[1]
+    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 12)
+    case = Case().updated({"roller.speed": 20.0})
+    a = fe1d.solve(case)
+    built = []
+    monkeypatch.setattr(fe1d, "FoilBearing1D", lambda *args, **kw: built.append(1))
+    b = fe1d.solve(case)
+    assert built == [] and b.state("problem") is a.state("problem")
+    assert b["h_min"] == pytest.approx(a["h_min"], rel=1e-9)

@@ -184,6 +184,32 @@ def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return ordered[new], inverse
 
 
+def _test_layout(test) -> np.ndarray:
+    """A test-function array, (function, element, point) or stacked (term, function, element,
+    point), as the right operand of :func:`_contract`: (element, [term x] point, function)."""
+    if np.ndim(test) == 4:
+        ns, ni, ne, nq = test.shape
+        return np.einsum("sieq->esqi", test).reshape(ne, ns * nq, ni)
+    return np.einsum("ieq->eqi", test)
+
+
+def _contract(test_layout, trial) -> np.ndarray:
+    """:meth:`BasisData.bilinear` (``a=None``) with the test side from :func:`_test_layout`.
+
+    ``np.einsum(..., optimize=True)`` searches a contraction path on every call, which cost
+    as much as the contraction for these small arrays; its path for both equations is one
+    batched matrix product over the elements, (e, j, [s] q) @ (e, [s] q, i), done here
+    directly with the operands laid out as numpy's ``bmm_einsum`` lays them out, so the
+    values are the same bit for bit (tests/test_fast.py).
+    """
+    if np.ndim(trial) == 4:
+        ns, nj, ne, nq = trial.shape
+        a = np.einsum("sjeq->ejsq", trial).reshape(ne, nj, ns * nq)
+    else:
+        a = np.einsum("jeq->ejq", trial)
+    return np.matmul(a, test_layout).transpose(2, 1, 0)
+
+
 class LineAssembler:
     """The 1-D film + web system (:func:`webfem.fem.forms.residual`, ``jacobian`` and, for P1
     pressure, the lumped ``sink_residual`` / ``sink_jacobian`` on ``sink_basis``).
@@ -206,16 +232,38 @@ class LineAssembler:
         if self.s is not None:
             blocks.append(self.s.pairs(self.s.index[0], self.s.index[0]))
         self.pattern = Pattern(blocks, (b.N, b.N))
+        # the test functions of the Jacobian's blocks, laid out once for _contract (its
+        # operand as numpy's einsum optimiser prepares it on every call)
+        self._t_pp = _test_layout(np.stack([gq, q]))
+        self._t_gq = _test_layout(gq)
+        self._t_v = _test_layout(v)
         # the state-independent blocks: -dp v, dw' v' and dw'' v'' (times Dn)
-        self.wp = -b.bilinear(v, q, b.dx)
-        self.ww_membrane = b.bilinear(gv, gv, b.dx)
-        self.ww_bending = b.bilinear(hv, hv, b.dx)
+        self.wp = -_contract(self._t_v, q * b.dx)
+        self.ww_membrane = _contract(_test_layout(gv), gv * b.dx)
+        self.ww_bending = _contract(_test_layout(hv), hv * b.dx)
+        self._t_sink = _test_layout(self.s.phi) if self.s is not None else None
+        self._last = None       # (u, args, sink, coefficients) of the last state
+        self._geometry = {}     # beta: the roller's departure and the wrap at the points
 
     def _coefficients(self, u, args, sink):
+        """The forms' coefficients at the quadrature points for the state u, kept for the
+        last (u, args, sink): Newton asks for the Jacobian at the state whose residual its
+        line search has just evaluated."""
+        last = self._last
+        if last is not None and last[2] == sink and last[1] == args \
+                and np.array_equal(last[0], u):
+            return last[3]
         b = self.b
         P, dP = b.interpolate(u, 0)
         W, dW, ddW = b.interpolate(u, 1, hess=True)
-        return self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink), dW[0], ddW
+        beta = args["beta"]
+        if beta not in self._geometry:
+            self._geometry = {beta: (self.forms.departure(b.x, beta),
+                                     self.forms.in_wrap(b.x, beta))}
+        out = (self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink,
+                                       geometry=self._geometry[beta]), dW[0], ddW)
+        self._last = (np.array(u, float, copy=True), args, sink, out)
+        return out
 
     def residual(self, u, prm, sink: bool) -> np.ndarray:
         b, dx = self.b, self.b.dx
@@ -238,22 +286,22 @@ class LineAssembler:
         c, _, _ = self._coefficients(u, prm.as_form_args(), sink)
         j = self.forms.jacobian_coefficients(c, newton)
         q, gq = self.q, self.gq
+        # BasisData.bilinear's products, with the test side prepared once per mesh
         if sink:
-            pp = b.bilinear(np.stack([gq, q]),
-                            np.stack([gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx),
-                                      q * (j["j_sink"] * dx)]))
+            pp = _contract(self._t_pp, np.stack([gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx),
+                                                 q * (j["j_sink"] * dx)]))
         else:
-            pp = b.bilinear(gq, gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx))
-        pw = b.bilinear(gq, self.v, j["j_w"] * dx)
+            pp = _contract(self._t_gq, gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx))
+        pw = _contract(self._t_gq, self.v * (j["j_w"] * dx))
         ww = (self.ww_membrane + prm.Dn * self.ww_bending
-              + b.bilinear(self.v, self.v, j["k_c"] * dx))
+              + _contract(self._t_v, self.v * (j["k_c"] * dx)))
         values = [pp, pw, self.wp, ww]
         if self.s is not None:
             s = self.s
             if prm.K:
                 P = s.interpolate(u, 0)[0]
                 a = prm.K * (1.0 + (2.0 if newton else 1.0) * prm.ds * P) * s.dx
-                values.append(s.bilinear(s.phi, s.phi, a))
+                values.append(_contract(self._t_sink, s.phi * a))
             else:
                 values.append(np.zeros(self.pattern.sizes[-1]))
         return self.pattern.matrix(values)

@@ -79,20 +79,23 @@ def contact_law(H, prm):
     return Pc, Pc / S
 
 
-def coefficients(x, P, dP, W, prm, sink: bool = True) -> dict:
+def coefficients(x, P, dP, W, prm, sink: bool = True, geometry=None) -> dict:
     """Coefficient arrays of the residual and Jacobian at quadrature points.
 
     Computed once per assembly (the forms below only multiply them with basis functions:
     scikit-fem calls a form once per pair of basis functions). ``prm`` holds
     ``beta, d, K, Dn, c, S, contact, floor``. ``sink=False`` leaves the Darcy sink out (it
-    is then assembled apart with nodal quadrature, :func:`sink_residual`).
+    is then assembled apart with nodal quadrature, :func:`sink_residual`). ``geometry``:
+    ``(departure(x, beta), in_wrap(x, beta))`` when the caller keeps them (they depend on
+    the mesh only).
     """
-    H = W + departure(x, prm["beta"])
+    D, chi = geometry if geometry is not None else (departure(x, prm["beta"]),
+                                                    in_wrap(x, prm["beta"]))
+    H = W + D
     Hf, above = film_gap(H, prm["floor"])
     d, s = prm["d"], prm.get("slip", 0.0)
     ds = prm.get("ds", d)
     rho, rho_s = 1.0 + d * P, 1.0 + ds * P
-    chi = in_wrap(x, prm["beta"])
     Pc, kc = contact_law(H, prm)
     Hf2 = Hf**2
     Hf3 = Hf2 * Hf

@@ -70,9 +70,19 @@ def refine_nodes(X: np.ndarray, level: int) -> np.ndarray:
 
 
 def line_mesh(X: np.ndarray):
-    """A scikit-fem ``MeshLine`` with boundaries ``left`` and ``right``."""
+    """A scikit-fem ``MeshLine`` with boundaries ``left`` and ``right``: the boundary facets
+    (end nodes) at X[0] and X[-1], to ``np.isclose``."""
     from skfem import MeshLine
 
+    X = np.asarray(X, float)
     lo, hi = X[0], X[-1]
-    return MeshLine(np.asarray(X, float)).with_boundaries({
-        "left": lambda x: np.isclose(x[0], lo), "right": lambda x: np.isclose(x[0], hi)})
+    mesh = MeshLine(X)
+    if X.size < 2 or not np.all(np.diff(X) > 0):
+        return mesh.with_boundaries({"left": lambda x: np.isclose(x[0], lo),
+                                     "right": lambda x: np.isclose(x[0], hi)})
+    # nodes in order: facet k is node k and the boundary facets are the two end nodes, so
+    # the sets are what scikit-fem's test of the facet midpoints gives, without building
+    # the facets of a mesh that with_boundaries then copies (the copy builds them again)
+    ends = np.array([0, X.size - 1], dtype=np.int32)
+    return mesh.with_boundaries({"left": ends[np.isclose(X[ends], lo)],
+                                 "right": ends[np.isclose(X[ends], hi)]})

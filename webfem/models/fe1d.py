@@ -53,6 +53,8 @@ _minimum = minimum
 
 
 _CACHE: dict = {}
+#: Discrete problems kept in :data:`_CACHE` (a cold solve of the base case builds 5).
+_CACHE_SIZE = 12
 
 
 def _nodes(beta, entry, level, nodes=None) -> np.ndarray:
@@ -75,13 +77,22 @@ def _nodes(beta, entry, level, nodes=None) -> np.ndarray:
 
 def _problem(beta, entry, level, order, nodes=None) -> FoilBearing1D:
     """One discrete problem per mesh, reused across solves of a sweep."""
-    X = _nodes(beta, entry, level, nodes)
+    return _cached(_nodes(beta, entry, level, nodes), order)
+
+
+def _cached(X, order) -> FoilBearing1D:
+    """The discrete problem on the nodes X, built once: the starting meshes and the refined
+    ones (a repeated solve, and often a sweep's next point, refine to the same nodes). The
+    least recently used problem makes room for a new one beyond :data:`_CACHE_SIZE`, so a
+    sweep keeps its starting mesh while its refined ones come and go."""
     key = (X.size, float(X[0]), float(X[-1]), order, X.tobytes())
-    if key not in _CACHE:
-        if len(_CACHE) > 8:
-            _CACHE.clear()
-        _CACHE[key] = FoilBearing1D(X, order=order)
-    return _CACHE[key]
+    problem = _CACHE.pop(key, None)
+    if problem is None:
+        problem = FoilBearing1D(X, order=order)
+        while len(_CACHE) >= _CACHE_SIZE:
+            _CACHE.pop(next(iter(_CACHE)))
+    _CACHE[key] = problem                      # the most recently used last
+    return problem
 
 
 def _transfer(coarse: FoilBearing1D, u, prm, fine: FoilBearing1D) -> np.ndarray:
@@ -89,12 +100,15 @@ def _transfer(coarse: FoilBearing1D, u, prm, fine: FoilBearing1D) -> np.ndarray:
     up to the interpolation of P2 midpoints)."""
     v = np.zeros(fine.n_dofs)
     xn = fine.X
-    v[fine.iW] = coarse.gap(u, prm, xn) - forms.departure(xn, prm.beta)
     # slope of W: derivative of the Hermite interpolant through probes at +- a small offset
     d = 1e-7 * max(1.0, float(np.ptp(xn)))
     xa, xb = np.clip(xn - d, xn[0], xn[-1]), np.clip(xn + d, xn[0], xn[-1])
-    v[fine.iWx] = ((coarse.gap(u, prm, xb) - forms.departure(xb, prm.beta))
-                   - (coarse.gap(u, prm, xa) - forms.departure(xa, prm.beta))) / (xb - xa)
+    # one probe of the three point sets (point by point the same numbers as three)
+    n = xn.size
+    pts = np.concatenate([xn, xb, xa])
+    W = coarse.gap(u, prm, pts) - forms.departure(pts, prm.beta)
+    v[fine.iW] = W[:n]
+    v[fine.iWx] = (W[n:2 * n] - W[2 * n:]) / (xb - xa)
     xP = fine.basis.doflocs[0][fine.iP]
     v[fine.iP] = coarse.pressure(u, xP)
     v[fine.fixed] = 0.0
@@ -140,7 +154,7 @@ class _Line:
         return Start(problem, _start(problem, prm, case, initial))
 
     def refined(self, problem, u, prm, X, options):
-        finer = FoilBearing1D(X, order=options.order)
+        finer = _cached(np.asarray(X, float), options.order)
         return finer, _transfer(problem, u, prm, finer)
 
     def mesh_text(self, problem, options) -> str:
