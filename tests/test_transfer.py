@@ -12,9 +12,10 @@ import scipy.sparse as sp
 from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
                    ElementQuad2)
 
+from webfem.fem.hermite import LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
 from webfem.fem.transfer import (cellwise_matrices, film_mesh, interpolate_values,
-                                 line_probes, quadrature_matrices, tensor_interpolation,
+                                 quadrature_matrices, tensor_interpolation,
                                  web_values, width_nodes)
 
 
@@ -115,23 +116,22 @@ def test_cellwise_matrices_of_cells_numbered_unlike(nb):
 
 @pytest.mark.parametrize("elem", [ElementLineHermite, ElementLineP1, ElementLineP2])
 def test_line_probes_are_scikit_fems(elem):
-    """line_probes is scikit-fem's probes entry for entry (the same cells, also for points
-    on nodes and at both ends, and the same values), on a mesh whose nodes are not in order;
-    a point outside the mesh is refused like probes does."""
+    """LineProbes (the web at points in the 2-D model) is scikit-fem's probes @ dofs to the
+    last bit (the same cells, also for points on nodes and at both ends), on a mesh whose
+    nodes are not in order; a point outside the mesh is refused like probes does."""
     X = graded_nodes(12.0, 6.0, level=0)
     rng = np.random.default_rng(3)
     line = line_mesh(X)
     line = type(line)(line.p[:, ::-1].copy(), (line.p.shape[1] - 1 - line.t)[::-1].copy())
     basis = Basis(line, elem())
     x = np.concatenate([X, rng.uniform(X[0], X[-1], 500), [X[0], X[-1], 0.0]])
-    got, want = line_probes(basis, x), basis.probes(x[None, :])
-    for a, b in [(got.row, want.row), (got.col, want.col), (got.data, want.data)]:
-        assert np.array_equal(a, b)
-    w = rng.normal(size=basis.N)
-    assert np.array_equal(got @ w, want @ w)
+    probe = LineProbes(basis)
+    for _ in range(2):                  # the second time from the kept values
+        w = rng.normal(size=basis.N)
+        assert np.array_equal(probe(x, w), basis.probes(x[None, :]) @ w)
     for outside in (X[0] - 1e-9, X[-1] + 1e-9):
         with pytest.raises(ValueError):
-            line_probes(basis, np.array([outside]))
+            probe(np.array([outside]), w)
 
 
 @pytest.mark.parametrize("order", [1, 2])

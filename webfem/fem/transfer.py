@@ -24,7 +24,7 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["width_nodes", "film_mesh", "quadrature_matrices", "web_values",
-           "cellwise_matrices", "line_probes", "interpolate_values", "tensor_interpolation"]
+           "cellwise_matrices", "interpolate_values", "tensor_interpolation"]
 
 
 def width_nodes(lam: float, level: int = 0, half: bool = True, fine: float = 0.25,
@@ -143,41 +143,6 @@ def web_values(film_basis, web_basis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     where = where.reshape(s.shape)
     values = vals[:, cell[:, None], where]
     return cell, np.asarray(web_basis.element_dofs)[:, cell], values
-
-
-def line_probes(basis, x) -> sp.coo_matrix:
-    """scikit-fem's ``basis.probes(x[None, :])`` for a basis on a line mesh (the web's), with
-    the points located by a sorted search.
-
-    scikit-fem's line element finder compares every point with every cell (points x cells
-    booleans: most of the cost of evaluating the web at the film's nodes or at the wrap's
-    samples). The cell chosen for each point is the finder's (a point on a node goes to the
-    cell on its right, the last node to the last cell), and the rest is ``probes``' own
-    code, so the matrix is the same, entry for entry (tests/test_transfer.py).
-    """
-    x = np.asarray(x, float)
-    cells = _line_cells(basis.mesh, x)
-    pts = basis.mapping.invF(x[None, :, None], tind=cells)
-    phis = np.array([basis.elem.gbasis(basis.mapping, pts, k, tind=cells)[0]
-                     for k in range(basis.Nbfun)]).flatten()
-    rows = np.tile(np.arange(x.size, dtype=np.int32), basis.Nbfun)
-    cols = basis.element_dofs[:, cells].flatten()
-    return sp.coo_matrix((phis, (rows, cols)), shape=(x.size, basis.N))
-
-
-def _line_cells(line, x: np.ndarray) -> np.ndarray:
-    """The cell of a line mesh holding each x, as scikit-fem's ``element_finder`` picks it:
-    the cell whose right end is the first node to the right of x (x on the last node: the
-    last cell). Raises ValueError for a point outside the mesh, as it does."""
-    node = np.argsort(line.p[0])
-    xs = line.p[0, node]
-    right = np.full(line.p.shape[1], -1, dtype=np.int32)    # node -> cell it is the right end of
-    right[line.t[np.argmax(line.p[0, line.t], 0), np.arange(line.t.shape[1])]] = \
-        np.arange(line.t.shape[1], dtype=np.int32)
-    i = np.searchsorted(xs, np.where(x == xs[-1], 0.5 * (xs[-2] + xs[-1]), x), side="right")
-    if np.any(i == 0) or np.any(i == xs.size):
-        raise ValueError("Point is outside of the mesh.")
-    return right[node[i]]
 
 
 def interpolate_values(basis, w: np.ndarray) -> np.ndarray:

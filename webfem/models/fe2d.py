@@ -37,7 +37,8 @@ from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard
 from ..fem.scaling import FoilParameters
 from ..fem.grooves import GroovePattern, groove_nodes
-from ..fem.transfer import (film_mesh, interpolate_values, line_probes, quadrature_matrices,
+from ..fem.hermite import LineProbes
+from ..fem.transfer import (film_mesh, interpolate_values, quadrature_matrices,
                              tensor_interpolation, width_nodes)
 from ..fem.web import web_coefficients, web_jacobian, web_residual
 from ..physics.friction import friction_for
@@ -104,7 +105,7 @@ class FoilBearing2D:
         self._assembler = None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
-        self._probes, self._average = {}, None
+        self._web_probes, self._average = LineProbes(self.wbasis), None
         #: the 1-D problem and state this problem started from (width continuation)
         self.line_start = None
         #: True when its start is a solved state carried over from another mesh
@@ -171,20 +172,15 @@ class FoilBearing2D:
         return sp.bmat([[Jpp, Jpw], [Jwp, Jww]], format="csr")
 
     # -- fields ---------------------------------------------------------------------------
-    def probes(self, X) -> sp.coo_matrix:
-        """The web basis at scaled points X (scikit-fem's ``probes``, through
-        :func:`~webfem.fem.transfer.line_probes`), kept for point sets asked for again."""
-        X = np.asarray(X, float)
-        key = X.tobytes()
-        if key not in self._probes:
-            if len(self._probes) >= PROBE_SETS:
-                self._probes.clear()
-            self._probes[key] = line_probes(self.wbasis, X)
-        return self._probes[key]
+    def at(self, X, dofs) -> np.ndarray:
+        """The web-space function with Hermite ``dofs`` at scaled points X: scikit-fem's
+        ``probes(X) @ dofs`` to the last bit (:class:`~webfem.fem.hermite.LineProbes`, the
+        values at the last point sets kept)."""
+        return self._web_probes(np.asarray(X, float), dofs)
 
     def gap(self, u, prm, X) -> np.ndarray:
         X = np.asarray(X, float)
-        return self.probes(X) @ self._split(u)[1] + forms.departure(X, prm.beta)
+        return self.at(X, self._split(u)[1]) + forms.departure(X, prm.beta)
 
     def width_average(self, u) -> np.ndarray:
         """Hermite DOFs of the width-averaged film pressure: the L2 projection of
@@ -217,7 +213,7 @@ class FoilBearing2D:
 
     def pressure(self, u, X) -> np.ndarray:
         """Width-averaged film pressure at X (through :meth:`width_average`)."""
-        return self.probes(X) @ self.width_average(u)
+        return self.at(X, self.width_average(u))
 
     def film_pressure_at_vertices(self, u) -> np.ndarray:
         """Film pressure at the mesh vertices (for VTU)."""
@@ -309,9 +305,6 @@ class FoilBearing2D:
         return frozen_coefficient_picard(self, u0, prm, o.tol, o.omega, o.aitken,
                                          o.picard_max_iter, o.backtrack or None, o.anderson)
 
-
-#: Point sets whose web probes a problem keeps (the nodes and the results' samples).
-PROBE_SETS = 8
 
 #: The film-only solve before a coupled Newton stops at this fraction of its first residual:
 #: it only gives Newton a pressure consistent with the web (one or two steps; solving it to
@@ -410,7 +403,7 @@ def _film_fields(case: Case, problem: FoilBearing2D, u, prm) -> Film:
 
 def self_probe(problem: FoilBearing2D, dofs, X) -> np.ndarray:
     """The web-space function with Hermite ``dofs`` at scaled points X."""
-    return problem.probes(X) @ dofs
+    return problem.at(X, dofs)
 
 
 #: A wide web is solved on the periodic groove cell from this many groove pitches across it
