@@ -68,10 +68,13 @@ def test_the_fe_driver_names_its_stages():
     stages = list(dict.fromkeys(s.stage for s in seen))
     assert stages[0][0].startswith("fe1d newton, ") and stages[0][0].endswith(" unknowns")
     assert any(s[0].startswith("fe1d refinement round 1, ") for s in stages)
-    assert all(s[0].startswith(("fe1d newton, ", "fe1d refinement round ")) for s in stages)
-    # the 1-D model's continuation, when it runs, inside the solve it rescues
+    assert all(s[0].startswith(("fe1d newton, ", "fe1d refinement round ",
+                                "fe1d safe start")) for s in stages)
+    # the 1-D model's continuation, when it runs, inside the solve it rescues; on the base
+    # case the direct cold start ends on an inadmissible branch and the safe start runs
     assert all(inner.startswith("Eshel-Elrod continuation, s = ") for s in stages
                for inner in s[1:])
+    assert ("fe1d safe start", "Eshel-Elrod continuation, s = 0") in stages
 
 
 def test_fe2d_reports_its_1d_start_inside_its_own_stage():

@@ -133,6 +133,9 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
                            f"start {'ended inadmissible: ' + why if why else 'failed'})")
         start, problem, u, info = cold, problem2, u2, info2
         why = admissibility(case, problem, u, prm) if info["converged"] else None
+    if why and info["converged"]:
+        start, problem, u, info, why = _from_safe_start(disc, case, prm, options, start,
+                                                        problem, u, info, why)
     if why:
         _no_admissible_solution(case, prm, why)
         start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
@@ -150,6 +153,28 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
                                f"{info['reason']} after {info['iterations']} iterations, "
                                f"residual {info['residual']:.3e}", result, info.get("history"))
     return result
+
+
+def _from_safe_start(disc, case, prm, options, start, problem, u, info, why):
+    """A converged but inadmissible state on the starting mesh may be a spurious branch of
+    the nonlinear problem, not a mesh too coarse: the model's safe start on the same mesh
+    (``disc.safe_start``, e.g. the 1-D model's continuation from the Eshel-Elrod problem)
+    is tried first. Its answer is taken only when it is converged and admissible."""
+    if not hasattr(disc, "safe_start"):
+        return start, problem, u, info, why
+    with stage(f"{disc.name} safe start"):
+        safe = disc.safe_start(case, prm, options)
+    if safe is None:
+        return start, problem, u, info, why
+    problem2, u2, info2 = _solve_and_refine(disc, safe, prm, options)
+    why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
+    if not info2["converged"] or why2:
+        return start, problem, u, info, why
+    info2["iterations"] += info["iterations"]
+    info2["history"] = list(info["history"]) + list(info2["history"])
+    info2["reason"] = (f"{info2.get('reason', '')} (from the safe start on the same mesh: "
+                       f"the direct start ended on an inadmissible branch: {why})")
+    return safe, problem2, u2, info2, None
 
 
 #: The second finer mesh of :func:`_on_finer_meshes` is tried only while the first finer one

@@ -153,6 +153,20 @@ class _Line:
         problem = _problem(prm.beta, options.entry, options.level, options.order, nodes)
         return Start(problem, _start(problem, prm, case, initial))
 
+    def safe_start(self, case: Case, prm: FoilParameters, options: FE1DOptions) -> Start | None:
+        """The starting mesh solved along the Eshel-Elrod continuation from cold (Newton
+        only): the driver's second try when the direct start converged to an inadmissible
+        branch (at 15-20 m/s on the base case the direct cold start ends with the web through
+        the roller at the exit, the continuation on the physical branch on the same mesh).
+        None when it does not converge."""
+        if options.method != "newton" or not options.continuation:
+            return None
+        problem = self.start(case, prm, options, None).problem
+        u, info = problem.solve_continued(prm, options)
+        if not info["converged"]:
+            return None
+        return Start(problem, u, iterations=info["iterations"])
+
     def refined(self, problem, u, prm, X, options):
         finer = _cached(np.asarray(X, float), options.order)
         return finer, _transfer(problem, u, prm, finer)

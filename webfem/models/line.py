@@ -201,6 +201,20 @@ class FoilBearing1D:
         if out.converged or not continuation:
             info.update(converged=out.converged, residual=out.residual, reason=out.reason)
             return out.u, info
+        return self.solve_continued(prm, options, info)
+
+    def solve_continued(self, prm, options: FE1DOptions | None = None,
+                        info: dict | None = None):
+        """Newton along the continuation from the Eshel-Elrod problem, from its cold start
+        (the safe start: the driver also uses it when a direct start converged to an
+        inadmissible branch). ``info``: iterations and history spent before, added to.
+
+        Returns ``(u, info)`` as :meth:`solve_newton`.
+        """
+        options = options or FE1DOptions()
+        tol, max_iter = options.tol, options.max_iter
+        first_try = min(max_iter, 25)
+        info = info if info is not None else dict(iterations=0, history=[], steps=[])
         # continuation from the Eshel-Elrod problem: permeation K, compressibility d and
         # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold).
         # From its solution the full problem is tried at once: a far better start than the
