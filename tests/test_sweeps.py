@@ -370,3 +370,22 @@ def test_file_modes_follow_the_umask(tmp_path, umask):
     files = list((tmp_path / "out").iterdir()) + list((tmp_path / "vtu").iterdir())
     assert {p.suffix for p in files} == {".csv", ".json", ".vtu", ".pvd"}
     assert {p.stat().st_mode & 0o777 for p in files} == {0o666 & ~umask}
+
+
+def _blas_threads():
+    from threadpoolctl import threadpool_info
+    return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+
+def test_local_workers_run_one_blas_thread_each():
+    """N processes with a BLAS thread per core each oversubscribe the machine (the 24-point
+    fe2d sweep on 2 processes was slower than serial); each local worker runs one."""
+    from webfem.sweeps.workers import Processes
+
+    got = {}
+    pool = Processes(2)
+    try:
+        pool.run([(k, ()) for k in range(2)], got.__setitem__, task=_blas_threads)
+    finally:
+        pool.close()
+    assert len(got) == 2 and all(v and set(v) == {1} for v in got.values()), got

@@ -84,14 +84,19 @@ def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, dict]:
     return getattr(problem, method)(u0, prm, options)
 
 
-def _solve_and_refine(disc: Discretisation, start: Start, prm, options):
+def _solve_and_refine(disc: Discretisation, start: Start, prm, options, case=None):
     """Solve on the starting mesh, then refine where the film is thin and solve again, up to
-    ``options.adapt`` rounds."""
+    ``options.adapt`` rounds. With ``case`` (a cold start of a model with a safe start), a
+    state inadmissible on the starting mesh is returned unrefined: the driver tries the safe
+    start next (refining a spurious branch costs rounds for nothing)."""
     problem = start.problem
     with stage(f"{disc.name} {options.method}, {problem.n_dofs:,} unknowns"):
         u, info = _iterate(problem, start.u0, prm, options)
     info["iterations"] += start.iterations
     rounds = 0
+    if case is not None and info["converged"] and admissibility(case, problem, u, prm):
+        info["adapt_rounds"] = 0
+        return problem, u, info
     while info["converged"] and rounds < options.adapt:
         X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
         if X is None:
@@ -122,11 +127,13 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
     with stage(f"{disc.name} start"):
         start = disc.start(case, prm, options, initial)
-    problem, u, info = _solve_and_refine(disc, start, prm, options)
+    safe = case if hasattr(disc, "safe_start") else None
+    problem, u, info = _solve_and_refine(disc, start, prm, options,
+                                         safe if initial is None else None)
     why = admissibility(case, problem, u, prm) if info["converged"] else None
     if initial is not None and (not info["converged"] or why):
         cold = disc.start(case, prm, options, None)
-        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, options)
+        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, options, safe)
         info2["iterations"] += info["iterations"]
         info2["history"] = list(info["history"]) + list(info2["history"])
         info2["reason"] = (f"{info2.get('reason', '')} (cold start after the continued "
