@@ -1,5 +1,5 @@
 """Sweep throughput: the 24-point fe2d speed sweep and traction-loss search (issue 14's
-targets), then the 1-D FE model serial (with continuation), local processes, Dask.
+targets; each serial and on 2 processes), then the 1-D FE model serial (with continuation), local processes, Dask.
 
 Run: ``python benchmarks/bench_sweeps.py [N_POINTS]`` (default 40 speeds of the base case).
 For each way it prints the wall time, solves per second and the ratio to serial, and where
@@ -59,12 +59,16 @@ def fe2d_targets(runs: int = 3):
     print(f"  the same sweep on 2 processes: {t2:.2f} s ({t / t2:.2f}x serial), "
           f"{sum(bool(r['converged']) for r in rows)}/24 converged")
     print(target("24-point fe2d sweep, 2 processes", t2, 4.0))
-    t0 = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "webfem", "traction-loss", "cases/base.toml",
-                    "--mu-min", "0.1", "--model", "fe2d"], check=True, capture_output=True)
-    t = time.perf_counter() - t0
-    print(f"webfem traction-loss cases/base.toml --mu-min 0.1 --model fe2d: {t:.2f} s (one run)")
-    print(target("traction-loss --model fe2d", t, 5.0))
+    for extra in ([], ["--workers", "2"]):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "webfem", "traction-loss", "cases/base.toml",
+                        "--mu-min", "0.1", "--model", "fe2d"] + extra, check=True,
+                       capture_output=True)
+        t = time.perf_counter() - t0
+        cmd = " ".join(["traction-loss --model fe2d"] + extra)
+        print(f"webfem traction-loss cases/base.toml --mu-min 0.1 --model fe2d "
+              f"{' '.join(extra)}: {t:.2f} s (one run)")
+        print(target(cmd, t, 5.0))
 
 
 def main(n: int = 40):

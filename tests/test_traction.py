@@ -188,6 +188,19 @@ def test_traction_loss_table_trend():
     assert tension[1]["speed"] > tension[0]["speed"]   # more tension, traction kept longer
 
 
+def test_traction_loss_scan_in_two_processes_finds_the_same_speed():
+    """The scan in runs of consecutive speeds on two processes: the same peak and bracket,
+    and the speed within the root find's tolerance (fe1d; the runs start cold)."""
+    case = Case().updated({"web.width": 0.1})
+    serial = traction_loss_speed(case, 0.1, "fe1d", n_scan=10)
+    both = traction_loss_speed(case, 0.1, "fe1d", n_scan=10, workers=2)
+    assert both.speed_peak == serial.speed_peak and both.bracket == serial.bracket
+    assert both.mu_peak == pytest.approx(serial.mu_peak, rel=1e-9)
+    assert both.speed == pytest.approx(serial.speed, rel=1e-3)
+    with pytest.raises(webfem.errors.InputError, match="workers = 1.5 is out of range"):
+        traction_loss_speed(case, 0.1, "fe1d", workers=1.5)
+
+
 def test_traction_loss_table_in_two_processes_gives_the_same_rows():
     """The searches are independent: two processes return the serial rows, in order, equal to
     rounding (a warm process reuses cached meshes and orderings: 1e-11 measured); fe1d, so a

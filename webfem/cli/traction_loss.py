@@ -37,8 +37,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--points", type=positive_int, default=CHART_POINTS,
                    help=f"points per parameter in the chart (default {CHART_POINTS})")
     p.add_argument("--workers", type=positive_int, default=1,
-                   help="run the chart's traction-loss searches in this many local processes "
-                        "(default 1; the same rows, to rounding)")
+                   help="local processes for the speed scan and the chart's searches "
+                        "(default 1; the same answers, to rounding)")
     add_units_argument(p)
     add_quiet_argument(p)
 
@@ -50,7 +50,8 @@ def run(args) -> int:
     speed_range = (args.min_speed, args.max_speed)
     with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
         out = traction_loss_speed(case, args.mu_min, model=args.model,
-                                  speed_range=speed_range, options=options)
+                                  speed_range=speed_range, options=options,
+                                  workers=args.workers)
     if args.json:
         print_json(out.to_dict())
     else:
