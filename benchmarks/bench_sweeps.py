@@ -1,5 +1,6 @@
 """Sweep throughput: the 24-point fe2d speed sweep and traction-loss search (issue 14's
-targets; each serial and on 2 processes), then the 1-D FE model serial (with continuation), local processes, Dask.
+targets; each serial and on 2 processes), then the 1-D FE model serial (with continuation),
+local processes, Dask.
 
 Run: ``python benchmarks/bench_sweeps.py [N_POINTS]`` (default 40 speeds of the base case).
 For each way it prints the wall time, solves per second and the ratio to serial, and where
