@@ -108,8 +108,9 @@ class FoilBearing2D:
         self._web_probes, self._average = LineProbes(self.wbasis), None
         #: the 1-D problem and state this problem started from (width continuation)
         self.line_start = None
-        #: True when its start is a solved state carried over from another mesh
-        self.carried = False
+        #: True: Newton tries the coupled system straight from its start (a solved state
+        #: carried over from another mesh, or the 1-D solution) before a film-only pre-solve
+        self.direct = False
 
     @property
     def n_dofs(self) -> int:
@@ -263,7 +264,7 @@ class FoilBearing2D:
         from (``line_start``), continuation in the web width (:func:`_width_continuation`)."""
         options = options or FE2DOptions()
         u, info = self._plain_newton(u0, prm, options.tol, options.max_iter,
-                                     DIRECT_STEPS if self.carried else 0)
+                                     DIRECT_STEPS if self.direct else 0)
         if not info["converged"] and self.ambient_grooves:
             # the solved groove pressure is close to ambient in deep grooves: start there
             solved = FoilBearing2D(self.X, self.Z, self.order, self.grooves, self.web_edges)
@@ -284,7 +285,8 @@ class FoilBearing2D:
         """Newton on film + web from ``u0`` with the film pressure made consistent with its
         web first (a film-only solve: it rescues starts whose pressure is far from the
         web's). ``direct_budget > 0``: first try that many coupled steps straight from
-        ``u0`` (a state carried over from a solved mesh needs no film-only solve)."""
+        ``u0`` (a state carried over from a solved mesh, or the 1-D solution, needs no
+        film-only solve)."""
         first = self._newton(u0, prm, tol, direct_budget) if direct_budget else None
         out = first
         if first is None or not first.converged:
@@ -311,7 +313,9 @@ class FoilBearing2D:
 #: 1e-8 cost two more factorisations without saving a coupled step, measured on the cases).
 START_RTOL = 1e-4
 
-#: Coupled Newton steps tried straight from a carried-over state before the film-only solve.
+#: Coupled Newton steps tried straight from the start before the film-only solve (from the
+#: 1-D solution the coupled Newton converged in 4-6 steps on the base case from 1 to 60 m/s,
+#: the same answers and 13 % less time than with the film-only solve first).
 DIRECT_STEPS = 6
 
 
@@ -453,6 +457,9 @@ class _Film:
                                 web_edges=domain != "cell",
                                 ambient_grooves=options.groove_pressure == "ambient")
         problem.line_start = (p1, u1)
+        # on a smooth roller the 1-D solution is close enough for the coupled Newton; a
+        # grooved film is not (the direct steps failed on the grooved cases: 0.27 -> 0.35 s)
+        problem.direct = pattern is None
         return Start(problem, problem.start_from_line(p1, u1, prm),
                      iterations=one["iterations"], solver={"line_result": one})
 
@@ -460,7 +467,7 @@ class _Film:
         finer = FoilBearing2D(X, problem.Z, order=options.order, grooves=problem.grooves,
                               web_edges=problem.web_edges,
                               ambient_grooves=problem.ambient_grooves)
-        finer.carried = True
+        finer.direct = True
         return finer, _transfer2d(problem, u, prm, finer)
 
     def mesh_text(self, problem, options) -> str:
