@@ -98,6 +98,8 @@ def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: 
 
 
 def _scan_in_processes(cases, speeds, model: str, opts: Options, workers: int):
+    """:func:`_scan` on ``workers`` processes: two runs of consecutive speeds per worker
+    (the low speeds cost most), each solved with continuation; results in speed order."""
     from .sweeps.workers import PointError, Processes, solve_chunk
 
     parts = min(2 * workers, len(cases))
@@ -169,9 +171,9 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "closed-form",
     if isinstance(n_scan, bool) or not isinstance(n_scan, int) or not 3 <= n_scan <= 10_000:
         raise InputError(f"n_scan = {n_scan!r} is out of range: must be an integer from 3 "
                          "to 10000")
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 256:
-        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
-                         "to 256")
+    from .sweeps.workers import check_workers
+
+    check_workers(workers)
     opts = make_options(model, options, **values)
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
     results = _scan(case, speeds, model, opts, workers=workers)
@@ -250,9 +252,9 @@ def traction_loss_table(case: Case, mu_min: float, models=("closed-form",),
     serial scan and root find, so the rows are the same, in the same order (to rounding: a
     warm process reuses cached meshes and orderings).
     """
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 256:
-        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
-                         "to 256")
+    from .sweeps.workers import check_workers
+
+    check_workers(workers)
     options = dict(values) if values and options is None else options
     tasks = [(case, mu_min, model, key, float(value), n_scan, _options_for(model, options))
              for model in models for key, _, (a, b) in CHART_PARAMETERS

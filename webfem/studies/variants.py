@@ -19,7 +19,6 @@ import numpy as np
 
 from ..api import solve_along
 from ..case import Case
-from ..errors import InputError
 
 __all__ = ["COMBOS", "VariantsStudy", "run"]
 
@@ -66,9 +65,9 @@ def run(case: Case, model: str = "fe2d", num: int | None = None, quick: bool = F
     24, or 6 with ``quick``) with the closed form and ``model``. ``progress`` receives one
     line of text per curve. ``workers`` > 1 solves the curves in that many local processes
     (each curve is the same continuation path: the same values, to rounding)."""
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 256:
-        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
-                         "to 256")
+    from ..sweeps.workers import check_workers
+
+    check_workers(workers)
     num = num if num is not None else (6 if quick else 24)
     speeds = np.geomspace(0.5, 40.0, num)
     tasks = [(case.updated({"friction.variant": variant, "friction.distribution": dist}),

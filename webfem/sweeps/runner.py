@@ -27,15 +27,13 @@ from ..models.registry import make_options
 from ..result import Result
 from .store import Store, SweepLock, point_key, signature
 from .table import failure_row, sweep_rows, typed
-from .workers import Dask, PointError, Processes, solve_path
+from .workers import MAX_WORKERS, Dask, PointError, Processes, solve_path
 
 __all__ = ["run", "SweepInterrupted", "CHUNK"]
 
 #: Default most points per parallel task: each chunk's first point starts cold, which costs
 #: iterations; longer chunks cost balance at the end and more work lost to Ctrl-C.
 CHUNK = 10
-#: Upper bound on ``workers`` (each is a process holding a model's matrices).
-MAX_WORKERS = 256
 _DASK_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://[^\s/]+$")
 
 

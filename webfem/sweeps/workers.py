@@ -146,6 +146,20 @@ def _sigint_ignored():
         signal.signal(signal.SIGINT, old)
 
 
+#: Upper bound on ``workers`` (each is a process holding a model's matrices).
+MAX_WORKERS = 256
+
+
+def check_workers(workers) -> int:
+    """``workers`` when it is an integer from 1 to :data:`MAX_WORKERS`, else an input error
+    naming it."""
+    if isinstance(workers, bool) or not isinstance(workers, int) or \
+            not 1 <= workers <= MAX_WORKERS:
+        raise InputError(f"workers = {workers!r} is out of range: must be an integer from 1 "
+                         f"to {MAX_WORKERS}")
+    return workers
+
+
 class Processes:
     """A pool of local worker processes (ignoring Ctrl-C), ended at once on Ctrl-C."""
 
