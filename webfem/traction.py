@@ -80,7 +80,7 @@ class TractionLoss:
 def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1):
     """Results at ``speeds`` in order with continuation; a failed solve is an error naming
     its speed (a scan with a hole could miss the crossing). ``workers`` > 1: in that many
-    local processes, two runs of consecutive speeds each, each run with continuation (a
+    local processes, three runs of consecutive speeds each, each run with continuation (a
     cold solve ends where a continued one does, so the values are the serial scan's)."""
     cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
     if workers > 1 and len(cases) > 2 and model != "closed-form":
@@ -98,11 +98,11 @@ def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: 
 
 
 def _scan_in_processes(cases, speeds, model: str, opts: Options, workers: int):
-    """:func:`_scan` on ``workers`` processes: two runs of consecutive speeds per worker
+    """:func:`_scan` on ``workers`` processes: three runs of consecutive speeds per worker
     (the low speeds cost most), each solved with continuation; results in speed order."""
     from .sweeps.workers import PointError, Processes, solve_chunk
 
-    parts = min(2 * workers, len(cases))
+    parts = min(3 * workers, len(cases))
     bounds = [round(i * len(cases) / parts) for i in range(parts + 1)]
     runs = [(i, (cases[a:b], model, opts)) for i, (a, b) in enumerate(zip(bounds, bounds[1:]))]
     got: dict = {}

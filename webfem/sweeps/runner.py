@@ -85,8 +85,10 @@ def _checked(spec, workers, chunk, dask) -> list[_Point]:
 
 
 def _auto_chunk(points: int, workers: int) -> int:
-    """At most :data:`CHUNK`, and at least two chunks per worker when points are few."""
-    return max(1, min(CHUNK, -(-points // (2 * workers))))
+    """At most :data:`CHUNK`, and at least three chunks per worker when points are few (the
+    workers finish closer together; a chunk's cold first point now costs little more than a
+    continued one: 24-point fe2d sweep on 2 processes 3.5 s in chunks of 6, 3.3 s of 4)."""
+    return max(1, min(CHUNK, -(-points // (3 * workers))))
 
 
 def _chunks(todo: list[int], points: list[_Point], size: int) -> list[list[int]]:
