@@ -36,8 +36,8 @@ test-slow: $(STAMP)
 	$(PY) -m pytest -q -m slow
 
 # time, iterations, unknowns, error against the converged mesh and the Newton floor of each
-# model, with issue 14's targets beside them (met / not met); about 20 minutes on 2 cores
-# (bench_figures.py alone runs `make figures` into a temporary folder: about 12)
+# model, with issue 14's targets beside them (met / not met); about 4 minutes on 2 cores
+# (bench_figures.py alone runs `make figures` into a temporary folder: about 2.5)
 bench: $(STAMP)
 	$(PY) benchmarks/bench_closed_form.py
 	$(PY) benchmarks/bench_fe1d.py

@@ -103,6 +103,17 @@ def test_a_cold_solve_ends_where_a_continued_one_does(model, speed):
         assert cold[key] == pytest.approx(continued[key], rel=1e-8), key
 
 
+def test_without_a_safe_answer_the_direct_state_is_refined_then_finer_meshes(monkeypatch):
+    """When the safe start gives nothing, the driver does what it did before it had one:
+    refine the direct start's state, then (still inadmissible) solve a finer mesh."""
+    from webfem.models import fe1d
+
+    monkeypatch.setattr(fe1d._Line, "safe_start", lambda self, case, prm, options: None)
+    r = webfem.solve(BASE.updated({"roller.speed": 20.0}), model="fe1d")
+    assert r["converged"] and "on mesh level 1" in r["solver_message"]
+    assert r["n_dofs"] == 1195 and r["adapt_rounds"] >= 1
+
+
 def test_coarse_user_mesh_is_flagged_with_an_error_estimate():
     """A 5-node user mesh over +-1 m: the summary names the user mesh and a warning gives
     the change of the gaps when every cell is halved."""

@@ -87,16 +87,22 @@ def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, dict]:
 def _solve_and_refine(disc: Discretisation, start: Start, prm, options, case=None):
     """Solve on the starting mesh, then refine where the film is thin and solve again, up to
     ``options.adapt`` rounds. With ``case`` (a cold start of a model with a safe start), a
-    state inadmissible on the starting mesh is returned unrefined: the driver tries the safe
-    start next (refining a spurious branch costs rounds for nothing)."""
+    state inadmissible on the starting mesh is returned unrefined (``info["unrefined"]``):
+    the driver tries the safe start next, and refines this state only if that fails
+    (refining a spurious branch costs rounds for nothing)."""
     problem = start.problem
     with stage(f"{disc.name} {options.method}, {problem.n_dofs:,} unknowns"):
         u, info = _iterate(problem, start.u0, prm, options)
     info["iterations"] += start.iterations
-    rounds = 0
     if case is not None and info["converged"] and admissibility(case, problem, u, prm):
-        info["adapt_rounds"] = 0
+        info.update(adapt_rounds=0, unrefined=True)
         return problem, u, info
+    return _refine(disc, problem, u, info, prm, options)
+
+
+def _refine(disc: Discretisation, problem, u, info, prm, options):
+    """The refinement rounds of :func:`_solve_and_refine` from a solved state."""
+    rounds = 0
     while info["converged"] and rounds < options.adapt:
         X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
         if X is None:
@@ -143,6 +149,11 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     if why and info["converged"]:
         start, problem, u, info, why = _from_safe_start(disc, case, prm, options, start,
                                                         problem, u, info, why)
+    if info.pop("unrefined", False) and why:
+        # no safe answer: the direct state is refined as any other (a coarse mesh may be
+        # what let the web through its asperities)
+        problem, u, info = _refine(disc, problem, u, info, prm, options)
+        why = admissibility(case, problem, u, prm) if info["converged"] else None
     if why:
         _no_admissible_solution(case, prm, why)
         start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
