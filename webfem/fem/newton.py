@@ -125,9 +125,10 @@ class NewtonResult:
 
 
 #: A residual at most this many times the tolerance is accepted when the Newton correction is
-#: below the step tolerance and the full step along it does not lower the residual: the iterate
-#: is then at the rounding floor of the residual's assembly (seen at high speed on grooved rollers, where
-#: the scaled terms are large: 1.0-1.2e-9 against a tolerance of 1e-9, corrections ~3e-15).
+#: below the step tolerance and the full step along it does not lower the residual: the
+#: iterate is then at the rounding floor of the residual's assembly (seen at high speed on
+#: grooved rollers, where the scaled terms are large: 1.0-1.2e-9 against a tolerance of 1e-9,
+#: corrections ~3e-15).
 FLOOR_FACTOR = 10.0
 
 #: A chord step is kept when it reaches the tolerance or lowers the residual this many times.
