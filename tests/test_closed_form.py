@@ -20,7 +20,7 @@ def test_eq21_base_case_at_40_m_s():
     kappa = 5e-15 * 80 * (pi/3) / (1.81e-5 * 70e-6 * 0.055 * 40) = 1.5030e-4; R kappa = 8.267 um
     h_center = 25.01 um, h_outlet = 16.74 um
     """
-    r = solve(Case().updated({"roller.speed": 40.0}))
+    r = solve(Case().updated({"roller.speed": 40.0}), model="closed-form")
     assert r["lambda"] == pytest.approx(8.4025, rel=1e-4)
     assert r["h_inlet"] == pytest.approx(33.27e-6, rel=1e-3)
     assert r["h_center"] == pytest.approx(25.01e-6, rel=1e-3)
@@ -37,7 +37,7 @@ def test_eq21_clamps_landed_web_to_zero():
     assert c.lam == pytest.approx(13.4, rel=0.01)
     assert c.beta == pytest.approx(44.0, rel=0.01)
     assert c.roller.radius * c.kappa == pytest.approx(33e-6, rel=0.02)
-    r = solve(c)
+    r = solve(c, model="closed-form")
     assert r["h_inlet"] == pytest.approx(15.0e-6, rel=0.01)
     assert r["h_outlet"] == 0.0 and r["h_center"] == 0.0
     x = r.fields["x"]
@@ -48,12 +48,12 @@ def test_eq21_clamps_landed_web_to_zero():
 
 def test_eq21_validity_range():
     # L = 0.020 m at 40 m/s: lambda = 4.8 (physics.md), outside the fit
-    r = solve(Case().updated({"roller.speed": 40.0, "web.width": 0.020}))
+    r = solve(Case().updated({"roller.speed": 40.0, "web.width": 0.020}), model="closed-form")
     assert r["lambda"] == pytest.approx(4.80, abs=0.01)
     assert not r["eq21_valid"]
     assert any("outside Eq. 21" in w for w in r["warnings"])
     # beta = B / eps^(1/3) < 6 for a 10 degree wrap at 40 m/s: 0.1745/0.03787 = 4.6
-    r = solve(Case().updated({"roller.speed": 40.0, "wrap.angle_deg": 10.0}))
+    r = solve(Case().updated({"roller.speed": 40.0, "wrap.angle_deg": 10.0}), model="closed-form")
     assert r["beta"] == pytest.approx(4.61, abs=0.01)
     assert not r["eq21_valid"]
 
@@ -68,8 +68,8 @@ def test_entrainment_uses_sum_of_speeds():
     """The film sees U = U_r + U_w: a web at 5 m/s on a roller at 15 m/s has the gap of 20 m/s
     (a massless web: the moving web's inertia lowers its tension, tested with the effects)."""
     light = Case().updated({"web.density": 0.0})
-    a = solve(light.updated({"roller.speed": 15.0, "web.speed": 5.0}))
-    b = solve(light.updated({"roller.speed": 20.0}))
+    a = solve(light.updated({"roller.speed": 15.0, "web.speed": 5.0}), model="closed-form")
+    b = solve(light.updated({"roller.speed": 20.0}), model="closed-form")
     assert a["h_inlet"] == pytest.approx(b["h_inlet"], rel=1e-12)
     assert a["U_slide"] == 10.0 and b["U_slide"] == 20.0
     assert a["mu"] < b["mu"] or a["regime"] != "fluid"   # less sliding, less viscous shear
@@ -81,11 +81,11 @@ def test_vectorised_matches_scalar():
     values = evaluate(**case_arrays(cases), variant=cases[0].friction_variant,
                       distribution=cases[0].friction.distribution)
     for i, c in enumerate(cases):
-        r = solve(c)
+        r = solve(c, model="closed-form")
         for key in ("h_inlet", "h_outlet", "mu", "delta_T", "beta", "lambda"):
             assert values[key][i] == pytest.approx(r[key], rel=1e-12), key
 
 
 def test_belt_formula_in_result():
-    r = solve(Case())
+    r = solve(Case(), model="closed-form")
     assert r["delta_T"] == pytest.approx(80.0 * math.expm1(r["mu"] * math.pi / 3), rel=1e-12)

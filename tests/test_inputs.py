@@ -42,16 +42,18 @@ def test_mesh_not_covering_the_wrap(tmp_path):
 
 def test_validity_warnings():
     with pytest.warns(ValidityWarning, match="outside Eq. 21"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.width": 0.02}))
+        webfem.solve(Case().updated({"roller.speed": 40.0, "web.width": 0.02}),
+                     model="closed-form")
     with pytest.warns(ValidityWarning, match="incompressible film"):
         webfem.solve(Case().updated({"roller.speed": 40.0, "web.tension": 150.0}),
                      model="fe1d", compressible=False)
     with pytest.warns(ValidityWarning, match="closed form leaves out bending"):
-        webfem.solve(Case().updated({"roller.speed": 40.0}))
+        webfem.solve(Case().updated({"roller.speed": 40.0}), model="closed-form")
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         r = webfem.solve(Case().updated({"roller.speed": 40.0,     # inside every range
-                                         "model.physics": "paper"}))
+                                         "model.physics": "paper"}),
+                         model="closed-form")
     assert list(r["warnings"]) == []
 
 

@@ -13,7 +13,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "webfem"
 
 #: Bottom (0) to top. A module may import its own layer and those below.
 LAYERS = [
-    {"errors", "units", "progress", "sections", "case", "sweepspec", "files", "physics"},
+    {"errors", "units", "progress", "sections", "case", "sweepspec", "files", "bundled",
+     "physics"},
     {"fem"},
     {"result", "describe"},
     {"models"},

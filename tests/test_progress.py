@@ -69,7 +69,7 @@ def test_the_fe_driver_names_its_stages():
     assert stages[0][0].startswith("fe1d newton, ") and stages[0][0].endswith(" unknowns")
     assert any(s[0].startswith("fe1d refinement round 1, ") for s in stages)
     assert all(s[0].startswith(("fe1d newton, ", "fe1d refinement round ",
-                                "fe1d safe start")) for s in stages)
+                                "fe1d safe start", "fe1d error estimate")) for s in stages)
     # the 1-D model's continuation, when it runs, inside the solve it rescues; on the base
     # case the direct cold start ends on an inadmissible branch and the safe start runs
     assert all(inner.startswith("Eshel-Elrod continuation, s = ") for s in stages

@@ -127,7 +127,7 @@ def test_variants_continue_along_speed():
     key = ("continuous", "gaussian")
     case = Case().updated({"friction.variant": key[0], "friction.distribution": key[1],
                            "roller.speed": u})
-    assert study.mu[key + ("closed-form",)][-1] == solve(case)["mu"]
+    assert study.mu[key + ("closed-form",)][-1] == solve(case, model="closed-form")["mu"]
     assert study.mu[key + ("fe1d",)][-1] == pytest.approx(solve(case, "fe1d")["mu"], rel=1e-6)
     # the curves in two processes: the same keys in the same order, the same values
     both = variants.run(Case(), model="fe1d", num=3, workers=2)

@@ -16,16 +16,17 @@ from webfem.traction import (CHART_PARAMETERS, TractionLoss, mu_curve, traction_
 
 
 def test_traction_loss_speed_is_a_crossing():
-    out = traction_loss_speed(Case(), 0.1)
+    out = traction_loss_speed(Case(), 0.1, "closed-form")
     u = out["speed"]
     assert out["bracket"][0] <= u <= out["bracket"][1]
-    mu = lambda s: webfem.solve(Case().updated({"roller.speed": s}))["mu"]  # noqa: E731
+    mu = lambda s: webfem.solve(Case().updated({"roller.speed": s}),  # noqa: E731
+                                model="closed-form")["mu"]
     assert mu(u * 0.99) > 0.1 > mu(u * 1.01)
     assert out["speed_peak"] < u
 
 
 def test_traction_loss_none_when_never_reached():
-    out = traction_loss_speed(Case(), 0.5)
+    out = traction_loss_speed(Case(), 0.5, "closed-form")
     assert out["speed"] is None and "below" in out["message"]
 
 
@@ -99,7 +100,7 @@ def synthetic(case, speeds, tensions, mu_cc, C, noise, seed=3, model="closed-for
 
 def test_calibration_recovers_constants_closed_form():
     rows = synthetic(Case(), np.geomspace(0.3, 30, 12), (40.0, 80.0, 120.0), 0.36, 0.7, 0.3)
-    fit = calibrate(rows, Case())   # starts from the paper's 0.3 and 0.4
+    fit = calibrate(rows, Case(), model="closed-form")   # starts from the paper's 0.3 and 0.4
     for name, true in (("mu_cc", 0.36), ("speed_constant", 0.7)):
         assert abs(fit["estimates"][name] - true) <= fit["ci95"][name], (name, fit)
         assert fit["ci95"][name] < 0.1 * true
@@ -142,7 +143,7 @@ def test_vectorised_friction_constants():
 # -- typed answers, checked inputs, calibration that knows what it cannot know -------------
 
 def test_traction_loss_is_a_typed_answer():
-    out = traction_loss_speed(Case(), 0.1, n_scan=12)
+    out = traction_loss_speed(Case(), 0.1, "closed-form", n_scan=12)
     assert isinstance(out, TractionLoss)
     assert out["speed"] == out.speed and out["bracket"] == out.bracket
     with pytest.raises(KeyError):
@@ -168,7 +169,7 @@ def test_traction_loss_rejects_bad_input(kwargs, words):
 def test_mu_curve_is_the_solved_mu():
     speeds, mu = mu_curve(Case(), "closed-form", [2.0, 20.0, 40.0])
     for u, m in zip(speeds, mu):
-        assert m == webfem.solve(Case().updated({"roller.speed": u}))["mu"]
+        assert m == webfem.solve(Case().updated({"roller.speed": u}), model="closed-form")["mu"]
 
 
 def test_traction_loss_chart_from_the_cli(tmp_path, capsys):
@@ -182,7 +183,7 @@ def test_traction_loss_chart_from_the_cli(tmp_path, capsys):
 
 
 def test_traction_loss_table_trend():
-    rows = traction_loss_table(Case(), 0.1, n=2, n_scan=12)
+    rows = traction_loss_table(Case(), 0.1, ("closed-form",), n=2, n_scan=12)
     tension = [r for r in rows if r["parameter"] == "web.tension"]
     assert len(rows) == 2 * len(CHART_PARAMETERS) and len(tension) == 2
     assert tension[1]["speed"] > tension[0]["speed"]   # more tension, traction kept longer
@@ -247,10 +248,10 @@ def test_calibration_rows_from_python_are_checked():
     rows = [{"roller.speed": u, "mu": 0.2} for u in (1.0, 2.0, 3.0)]
     rows[1]["mu"] = -0.1
     with pytest.raises(webfem.errors.InputError, match="measurement row 2: mu = -0.1"):
-        calibrate(rows, Case())
+        calibrate(rows, Case(), model="closed-form")
     rows[1]["mu"] = float("inf")
     with pytest.raises(webfem.errors.InputError, match="row 2: mu = inf is not finite"):
-        calibrate(rows, Case())
+        calibrate(rows, Case(), model="closed-form")
 
 
 def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
@@ -263,7 +264,7 @@ def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
     rows = synthetic(paper, (20.0,), (40.0, 60.0, 80.0, 100.0, 120.0), 0.33, 0.5, 0.2)
     p = _write(tmp_path / "one_speed.csv", "tension,delta_T\n" + "\n".join(
         f"{r['web.tension']},{r['delta_T']}" for r in rows))
-    loads = calibrate(read_measurements(p), Case())
+    loads = calibrate(read_measurements(p), Case(), model="closed-form")
     assert loads.identified == {"mu_cc": False, "speed_constant": False}
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json", "--set",
                  "model.physics=paper"]) == 0
@@ -286,7 +287,8 @@ def test_calibration_says_when_constants_act_only_together():
     """In boundary lubrication at one speed mu = (2/pi) mu_cc atan(U/C): one combination."""
     base = Case().updated({"roller.speed": 0.5})
     rows = synthetic(base, (0.5,), (40.0, 60.0, 80.0, 100.0, 120.0), 0.33, 0.5, 0.2)
-    fit = calibrate([{k: v for k, v in r.items() if k != "roller.speed"} for r in rows], base)
+    fit = calibrate([{k: v for k, v in r.items() if k != "roller.speed"} for r in rows], base,
+                    model="closed-form")
     assert fit.identified == {"mu_cc": False, "speed_constant": False}
     assert fit.ci95 == {"mu_cc": None, "speed_constant": None}
     assert any("only together with speed_constant" in n for n in fit.notes)

@@ -115,15 +115,16 @@ def test_without_a_safe_answer_the_direct_state_is_refined_then_finer_meshes(mon
 
 
 def test_coarse_user_mesh_is_flagged_with_an_error_estimate():
-    """A 5-node user mesh over +-1 m: the summary names the user mesh and a warning gives
-    the change of the gaps when every cell is halved."""
+    """A 5-node user mesh over +-1 m: the summary names the user mesh, states its error
+    estimates, and a warning says they exceed the target (a user mesh is not refined)."""
     nodes = np.linspace(-1.0, 1.0, 5) / BASE.x_scale
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ValidityWarning)
         r = webfem.solve(BASE, model="fe1d", nodes=nodes)
     assert r.summary.mesh.startswith("user nodes")
     text = [w for w in r.summary.warnings if w.startswith("user mesh")]
-    assert text and "halving every cell changes h_center by" in text[0]
+    assert text and "exceeds error_tol" in text[0] and "not refined" in text[0]
+    assert max(r["error_h_center"], r["error_h_min"], r["error_mu"]) > 1e-3
     assert any("user mesh" in str(w.message) for w in caught)
     # the graded default mesh gets no such warning
     assert not any(w.startswith("user mesh") for w in webfem.solve(BASE, model="fe1d")
@@ -208,6 +209,8 @@ def test_finer_mesh_remedy_stops_before_a_huge_mesh(monkeypatch, n_dofs, levels)
         return p, None, {"converged": True, "iterations": 1, "history": [], "reason": ""}
 
     class Disc:
+        name = "fe2d"
+
         def start(self, case, prm, options, initial):
             return None
 

@@ -1,8 +1,10 @@
 """The public entry points: :func:`solve` one case, :func:`solve_along` a path of cases with
 continuation, :func:`sweep` a :class:`webfem.case.Sweep`.
 
-Models and their options come from :data:`webfem.models.registry.MODELS`. Nothing here
-reads or writes files.
+Models and their options come from :data:`webfem.models.registry.MODELS`; ``model="auto"``,
+the default everywhere, picks the cheapest model whose stated errors meet its tolerance. A
+case may be given as a :class:`~webfem.case.Case`, a case file or a bundled case's name
+(a file in the current folder first). Nothing here writes files.
 
 Examples
 --------
@@ -15,11 +17,13 @@ Examples
 
 from __future__ import annotations
 
+import os
 import warnings
 from typing import Callable, Iterable, Iterator
 
+from .bundled import as_case, find_case
 from .case import Case
-from .sweepspec import Sweep
+from .sweepspec import Sweep, load_sweep
 from .errors import ConvergenceError, ValidityWarning
 from .models.options import Options
 from .models.registry import MODELS, make_options, model_spec
@@ -28,19 +32,20 @@ from .result import Result
 __all__ = ["MODELS", "solve", "solve_along", "sweep"]
 
 
-def solve(case: Case, model: str = "closed-form", *, initial: Result | None = None,
-          options: Options | dict | None = None, **values) -> Result:
+def solve(case: Case | str | os.PathLike, model: str = "auto", *,
+          initial: Result | None = None, options: Options | dict | None = None,
+          **values) -> Result:
     """Solve one operating point with the named model.
 
     Parameters
     ----------
-    case : Case
-        The operating point (SI units).
+    case : Case, str or path
+        The operating point (SI units): a Case, a case file or a bundled case's name.
     model : str
-        ``"closed-form"`` (the paper's Eq. 21, microseconds), ``"fe1d"`` (infinitely wide
-        film + web, about 0.1 s), ``"fe2d"`` (2-D film with edge leakage + web, about 1 s)
-        or ``"auto"`` (the cheapest of these whose estimated error in ``quantity`` meets
-        ``tol``).
+        ``"auto"`` (default: the cheapest model whose stated errors in h_center, h_min, mu
+        and the contact share meet ``tol``, 1 %), ``"closed-form"`` (the paper's Eq. 21,
+        microseconds), ``"fe1d"`` (infinitely wide film + web, tens of milliseconds) or
+        ``"fe2d"`` (2-D film with edge leakage + web, about 0.3 s).
     initial : Result, optional
         A converged result of the same model at a nearby point to start from (continuation);
         the answer does not depend on it, only the cost.
@@ -69,13 +74,13 @@ def solve(case: Case, model: str = "closed-form", *, initial: Result | None = No
     """
     spec = model_spec(model)
     opts = make_options(model, options, **values)
-    result = spec.solve(case, opts, initial=initial)
+    result = spec.solve(as_case(case), opts, initial=initial)
     for text in result.summary.warnings:
         warnings.warn(text, ValidityWarning, stacklevel=2)
     return result
 
 
-def solve_along(cases: Iterable[Case], model: str = "closed-form", options=None, *,
+def solve_along(cases: Iterable[Case], model: str = "auto", options=None, *,
                 keep_failures: bool = True, initial: Result | None = None,
                 **values) -> Iterator[Result]:
     """Solve cases in order, each started from the previous converged result.
@@ -102,15 +107,21 @@ def solve_along(cases: Iterable[Case], model: str = "closed-form", options=None,
         yield result
 
 
-def sweep(spec: Sweep, model: str = "closed-form", progress: Callable | None = None,
-          options=None, **values) -> Iterator[tuple[str, float, Result]]:
+def sweep(spec: Sweep | str | os.PathLike, model: str = "auto",
+          progress: Callable | None = None, options=None,
+          **values) -> Iterator[tuple[str, float, Result]]:
     """Yield ``(series_label, value, result)`` over a sweep, in memory.
+
+    ``spec``: a :class:`~webfem.case.Sweep`, or a case file or bundled case's name with a
+    ``[sweep]`` table.
 
     The closed form is evaluated for all points at once; FE models walk each series with
     continuation (:func:`solve_along`). A point that fails is yielded with
     ``converged = False`` and the sweep goes on. For resumable sweeps written to files see
     :func:`webfem.sweeps.run`.
     """
+    if not isinstance(spec, Sweep):
+        spec = load_sweep(find_case(spec))
     points = list(spec.points())
     total = len(points)
     if model == "closed-form":

@@ -18,7 +18,7 @@ Examples
 >>> paper = Case().updated({"model.physics": "paper"})    # rows of the paper's closed form
 >>> rows = [{"roller.speed": u, "mu": m} for u, m in zip([2.0, 8.0, 20.0, 30.0, 40.0],
 ...         [0.267, 0.2703, 0.1771, 0.0672, 0.0207])]
->>> fit = calibrate(rows, paper)
+>>> fit = calibrate(rows, paper, model="closed-form")
 >>> round(fit.estimates["mu_cc"], 2), fit["estimates"] == fit.estimates
 (0.3, True)
 """
@@ -238,7 +238,7 @@ def _identifiability(J: np.ndarray, p: np.ndarray, obs: np.ndarray, names) -> di
     return why
 
 
-def calibrate(rows: list[dict], case: Case, model: str = "closed-form",
+def calibrate(rows: list[dict], case: Case, model: str = "auto",
               fit_sigma: bool = False, x0=None, options=None, **values) -> Calibration:
     """Fit mu_cc, C (and sigma) to measured rows; see the module docstring.
 

@@ -178,6 +178,15 @@ class Summary(_ReadOnlyMapping):
     land_fraction: float | None = None
     contact_share_lands: float | None = None
     groove_domain: str | None = None
+    #: The error of what the result states, estimated per quantity: relative for the gaps,
+    #: relative to max(|mu|, 0.1 mu_cc) for mu, absolute for the contact share (FE models:
+    #: the mesh error from two meshes, :mod:`webfem.models.mesh_error`; the closed form and
+    #: fe1d also their model error against fe2d), and how the estimate was obtained.
+    error_h_center: float | None = None
+    error_h_min: float | None = None
+    error_mu: float | None = None
+    error_contact_share: float | None = None
+    error_basis: str | None = None
     #: auto: the model that answered, its estimated relative error in ``quantity`` against
     #: ``tolerance``, and why it was chosen.
     model_used: str | None = None
@@ -320,13 +329,22 @@ class Result:
 
     def slim(self) -> "Result":
         """A copy without the solver's internal objects (mesh bases, state vector): small
-        and picklable, for worker processes and storage."""
+        and picklable, for worker processes and storage. What a continued solve starts from
+        stays: the fields, and a 2-D result's 1-D start (``line_result``, slim itself)."""
+        line = self.state("line_result")
+        keep = {"line_result": line.slim()} if line is not None else None
         return dataclasses.replace(self, diagnostics=dataclasses.replace(self.diagnostics,
-                                                                         solver=None))
+                                                                         solver=keep))
+
+    def __reduce__(self):
+        # pickled as its slim copy: scikit-fem's bases hold lambdas, and a result sent to or
+        # from a worker process needs only what a continued solve starts from
+        s = self.slim()
+        return (Result, (s.case, s.summary, s.fields, s.diagnostics, s.film))
 
     def state(self, name: str):
         """The solver's internal object ``name`` ("problem", "state", "line_result"), for
-        continuation; None after :meth:`slim`."""
+        continuation; after :meth:`slim` (and pickling) only "line_result" is kept."""
         return (self.diagnostics.solver or {}).get(name)
 
     def __getitem__(self, key: str) -> Any:

@@ -9,7 +9,7 @@ Brent's method inside the bracketing interval.
 Examples
 --------
 >>> from webfem import Case
->>> out = traction_loss_speed(Case(), 0.1)
+>>> out = traction_loss_speed(Case(), 0.1, "closed-form")
 >>> round(out.speed, 1), out.model, out["speed"] == out.speed
 (27.7, 'closed-form', True)
 """
@@ -120,7 +120,7 @@ def _scan_in_processes(cases, speeds, model: str, opts: Options, workers: int):
     return out
 
 
-def traction_loss_speed(case: Case, mu_min: float, model: str = "closed-form",
+def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                         speed_range=SPEED_RANGE, n_scan: int = 24, xtol: float = 1e-3,
                         options: Options | dict | None = None, workers: int = 1,
                         **values) -> TractionLoss:
@@ -239,7 +239,7 @@ def _options_for(model: str, options):
     return None if model == "closed-form" else options
 
 
-def traction_loss_table(case: Case, mu_min: float, models=("closed-form",),
+def traction_loss_table(case: Case, mu_min: float, models=("auto",),
                         n: int = CHART_POINTS,
                         n_scan: int = 16, progress=None, options=None, workers: int = 1,
                         **values) -> list[dict]:

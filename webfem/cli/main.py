@@ -99,6 +99,10 @@ def main(argv=None) -> int:
     except BrokenPipeError:
         _stdout_gone()
         return 0
+    except MemoryError:
+        error_line("out of memory: the problem is too large for this machine; a lower "
+                   "--opt level, a larger --opt error_tol or a narrower web needs less")
+        return 3
     except OSError as err:   # e.g. an output path that cannot be written after all
         where = f"'{err.filename}': " if err.filename else ""
         error_line(f"{where}{err.strerror or err}")

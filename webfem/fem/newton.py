@@ -41,16 +41,19 @@ class PatternSolver:
     The FE models return Jacobians whose index arrays are the same objects from call to call
     (:class:`webfem.fem.fast.Pattern`). For such a pattern, the restriction to the free
     unknowns and the fill-reducing ordering (minimum degree on A^T + A, as
-    :func:`solve_linear`, applied symmetrically) are computed once; each later solve gathers
-    the data array into the ordered matrix and factorises it with SuperLU in that order,
-    preferring diagonal pivots (threshold 0.01, SuperLU's symmetric mode): less fill and
-    about a quarter less time per factorisation on the 2-D film (benchmarks/bench_fe2d.py).
-    A matrix whose pattern it has not seen twice is solved by :func:`solve_linear`.
+    :func:`solve_linear`, applied symmetrically) are computed once; every solve, the first
+    included, gathers the data array into the ordered matrix and factorises it with SuperLU
+    in that order, preferring diagonal pivots (threshold 0.01, SuperLU's symmetric mode):
+    less fill and about a quarter less time per factorisation on the 2-D film
+    (benchmarks/bench_fe2d.py).
+
+    The ordering depends on the pattern alone and every factorisation of a pattern takes the
+    same path, so a solve's numbers do not depend on what was solved before it in the
+    process (a plan kept from an earlier solve changes the time, never the answer).
     """
 
     def __init__(self, size: int = 6):
         self.size = size
-        self._seen: dict = {}          # (id(indices), id(indptr)) -> (indices, indptr)
         self._plans: dict = {}         # (id(indices), id(indptr), free bytes) -> plan
 
     @staticmethod
@@ -58,18 +61,25 @@ class PatternSolver:
         return spla.splu(B, permc_spec=spec, diag_pivot_thresh=0.01,
                          options=dict(SymmetricMode=True))
 
-    def _plan(self, A, free):
-        """The gather map and ordering for (pattern, free), and the first factorisation."""
+    @staticmethod
+    def _plan(A, free):
+        """The gather map and the ordering of (pattern, free). The minimum-degree ordering is
+        SuperLU's, read from an incomplete factorisation that drops every entry (the column
+        ordering is computed from the pattern before any value is used; it is the complete
+        factorisation's ordering at a fraction of its cost)."""
         probe = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
         red = probe[free][:, free].tocsc()
         red.sort_indices()
-        first = sp.csc_matrix((A.data[red.data.astype(np.int64) - 1], red.indices, red.indptr),
-                              shape=red.shape)
-        lu = self._factor(first, "MMD_AT_PLUS_A")
-        inv = np.argsort(lu.perm_c)
+        structure = sp.csc_matrix((np.ones(red.nnz), red.indices, red.indptr),
+                                  shape=red.shape)
+        structure = structure + sp.identity(red.shape[0], format="csc") * red.shape[0]
+        perm = spla.spilu(structure.tocsc(), permc_spec="MMD_AT_PLUS_A", drop_tol=np.inf,
+                          fill_factor=1.0, diag_pivot_thresh=0.01,
+                          options=dict(SymmetricMode=True)).perm_c
+        inv = np.argsort(perm)
         B = red[inv][:, inv].tocsc()
         B.sort_indices()
-        return (A.indices, A.indptr, B, B.data.astype(np.int64) - 1, inv), lu
+        return (A.indices, A.indptr, B, B.data.astype(np.int64) - 1, inv)
 
     def solve(self, A, free, b) -> np.ndarray:
         """Solve A[free][:, free] x = b."""
@@ -78,21 +88,15 @@ class PatternSolver:
     def factor(self, A, free) -> Callable[[np.ndarray], np.ndarray]:
         """A factorisation of A[free][:, free], as a function solving it for a right-hand
         side (:func:`newton` keeps the last one for its chord steps)."""
-        if not isinstance(A, sp.csr_matrix):
-            return _factorised(sp.csr_matrix(A)[free][:, free])
-        pattern = (id(A.indices), id(A.indptr))
-        if pattern not in self._seen:
-            if len(self._seen) >= self.size:
-                self._seen.clear()
-            self._seen[pattern] = (A.indices, A.indptr)    # keeps the ids unique
-            return _factorised(A[free][:, free])
-        key = pattern + (np.asarray(free).tobytes(),)
-        if key not in self._plans:
+        A = A if isinstance(A, sp.csr_matrix) else sp.csr_matrix(A)
+        free = np.asarray(free)
+        key = (id(A.indices), id(A.indptr), free.tobytes())
+        plan = self._plans.get(key)
+        if plan is None or plan[0] is not A.indices or plan[1] is not A.indptr:
             if len(self._plans) >= self.size:
                 self._plans.clear()
-            self._plans[key], lu = self._plan(A, free)
-            return lu.solve
-        _, _, B, gather, inv = self._plans[key]
+            plan = self._plans[key] = self._plan(A, free)   # keeps the ids unique
+        _, _, B, gather, inv = plan
         B.data = A.data[gather]
         lu = self._factor(B, "NATURAL")
 
@@ -143,9 +147,9 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     """Solve F(u) = 0 for the ``free`` entries of u (others keep u0's values).
 
     Converged when ||F||_2 <= max(tol, rtol ||F(u0)||_2), or when the full Newton step's
-    max-norm is <= step_tol (scaled by 1 + ||u||_inf) and either the step did not raise ||F||
-    or ||F|| <= :data:`FLOOR_FACTOR` tol (no step can lower a residual at its rounding
-    floor). The step is halved until ||F|| decreases (Armijo-like, no sufficient-decrease
+    max-norm is <= step_tol (scaled by 1 + ||u||_inf) and ||F|| <= :data:`FLOOR_FACTOR` tol
+    (no step can lower a residual at its rounding floor). A residual that stalls above that
+    is a failure whose reason names it: ``tol`` means the residual tolerance it says. The step is halved until ||F|| decreases (Armijo-like, no sufficient-decrease
     constant) down to ``min_damping``; below that the solve is declared failed ("line search
     failed"), never silently accepted.
 
@@ -202,14 +206,24 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                                     "step below tolerance, the residual at its rounding floor")
             alpha *= 0.5
             if alpha < min_damping:
-                return NewtonResult(u, False, it, norm, history, "line search failed")
+                tiny = np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free])))
+                return NewtonResult(u, False, it, norm, history,
+                                    f"the residual stalls at {norm:.3g} (its rounding floor "
+                                    f"here), above the tolerance {tol:.3g}" if tiny
+                                    else "line search failed")
         u, r, norm = trial, r_trial, n_trial
         history.append(norm)
         report("newton", it, norm, tol)
         if monitor:
             monitor(it, norm)
         if alpha == 1.0 and np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free]))):
-            return NewtonResult(u, True, it, norm, history, "step below tolerance")
+            if norm <= FLOOR_FACTOR * tol:
+                return NewtonResult(u, True, it, norm, history, "step below tolerance")
+            # the iterate no longer moves but the residual stays above the tolerance: a
+            # tolerance below what the residual's assembly resolves, never an answer
+            return NewtonResult(u, False, it, norm, history,
+                                f"the residual stalls at {norm:.3g} (its rounding floor "
+                                f"here), above the tolerance {tol:.3g}")
     return NewtonResult(u, norm <= tol, max_iter, norm, history, "iteration limit")
 
 

@@ -1,146 +1,149 @@
-"""Automatic model choice: the cheapest model whose estimated error meets the tolerance.
+"""Automatic model choice: the cheapest model whose stated errors meet the tolerance.
 
-Candidates, cheapest first, each with an error estimate against the converged 2-D solution
-(the reference of the studies):
+Every model states its error per quantity a user reads (the summary keys ``error_h_center``,
+``error_h_min``, ``error_mu``, ``error_contact_share``): the closed form and fe1d their model
+error against the 2-D film (:mod:`webfem.models.model_error`) plus, for fe1d, its mesh error;
+fe2d, the reference, its mesh error (:mod:`webfem.models.mesh_error`). Candidates, cheapest
+first:
 
-1. **closed form** (microseconds). Rejected outside Eq. 21's range (beta > 6, lambda > 7) and
-   where the web lands on the roller (the closed form clamps h to 0, the FE models carry the
-   load on the asperities at h ~ h_c, and their mu differ by up to the boundary/mixed jump).
-   All estimates are doubled (:data:`SAFETY`).
-   Otherwise its error is estimated by re-evaluating the closed form with its fitted gap
-   R eps^(2/3) (0.589 - 1.614/lambda + 1.764/lambda^2) replaced by the wide-web limit
-   0.643 R eps^(2/3) (1 - 1.48/lambda) that the 2-D studies measured (Eshel-Elrod's 0.643 and
-   edge leakage of 1.48/lambda in the central gap), keeping its permeation term.
-2. **fe1d** (about 0.1 s). Its error is the edge leakage it leaves out: the gap scaled by
-   (1 - 1.48/lambda) (1.87/lambda for the minimum gap), mu re-evaluated on the scaled gap.
-3. **fe2d** (about 1-2 s), the reference: its estimated error is the mesh error measured in the
-   convergence study (below 1e-4 on the default mesh).
+1. **closed form** (microseconds), unless outside Eq. 21's range (beta > 6, lambda > 7) or
+   where its gap falls below h_c in the wrap (Eq. 21 lands the web at h = 0, the FE models
+   rest it on its asperities). Eq. 21 has no exit constriction, so its h_min is never
+   within a tolerance below about 0.5: it answers only where mu (``quantity = "mu"``) or the
+   central gap is the question.
+2. **fe1d** (tens of milliseconds): infinitely wide, so its gaps are off by the edge leakage
+   (about 1.5/lambda).
+3. **fe2d** (about 0.3 s), the reference.
 
-The estimate is for ``quantity`` ("mu", "h_center" or "h_min"), relative, and must be within
-``tol`` (default: mu within 1 %). The result is the chosen model's, with ``model = "auto"``,
-``model_used``, ``estimated_error`` and ``why`` added.
+With ``quantity = "all"`` (the default) each of the four errors must be within ``tol``;
+otherwise only the named one. The result is the chosen model's, with ``model = "auto"``,
+``model_used``, ``estimated_error`` (the largest judged error), ``why`` and the chosen
+model's ``error_*`` keys.
 """
 
 from __future__ import annotations
 
 import dataclasses
 
-import numpy as np
-
 from ..case import Case
-from ..physics import closed_form as cf
-from ..physics.friction import friction_for
+from ..errors import NoAdmissibleSolution
 from ..physics.validity import BETA_MAX
 from ..result import Result
 from . import closed, fe1d, fe2d
+from .model_error import closed_form_errors
 from .options import AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, fe_options
+from .readout import READ_QUANTITIES
 
-__all__ = ["solve", "solve_case", "NAME"]
+__all__ = ["solve", "solve_case", "NAME", "judged", "stated_errors"]
 
 NAME = "auto"
-#: Relative edge-leakage loss of the central and minimum gaps, times lambda (tests/test_fe2d.py).
-LEAK_CENTER, LEAK_MIN = 1.48, 1.87
-#: Eshel-Elrod's central gap of the infinitely wide foil bearing.
-H0_WIDE = 0.643
-#: Mesh error of fe2d's default mesh (convergence study: about 2e-5 in the central gap).
-FE2D_ERROR = 1e-4
-#: The estimates above come from flying-film studies; doubled, they bound the errors measured
-#: against the finest 2-D solutions (tests/test_auto.py), where unscaled they fell up to 2x
-#: short in mixed lubrication.
-SAFETY = 2.0
-QUANTITIES = ("mu", "h_center", "h_min")
+_LABEL = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
+          "contact_share": "contact share"}
 
 
-def _relative(estimate: float, value: float) -> float:
-    """|estimate/value - 1|; where nothing slides mu is about 0 and the difference is
-    measured against mu_cc instead (a relative error of 0 would be meaningless)."""
-    scale = abs(value) if abs(value) > 1e-3 else 1e-3
-    return abs(estimate - value) / scale
+def judged(quantity: str) -> tuple[str, ...]:
+    """The quantities whose errors the choice bounds."""
+    return READ_QUANTITIES if quantity == "all" else (quantity,)
 
 
-def _friction(case: Case, h, w, resting=False, p=None, dpdx=None):
-    return float(np.sum(friction_for(case, h, resting, p, dpdx)["mu"] * w))
+def stated_errors(r: Result) -> dict[str, float | None]:
+    """A result's stated error per quantity (None where it states none)."""
+    return {q: r.summary.get(f"error_{q}") for q in READ_QUANTITIES}
 
 
-def _closed_estimate(case: Case, r: Result, quantity: str):
-    if not r["eq21_valid"]:
-        return None, (f"closed form rejected: outside Eq. 21's range (beta = {r['beta']:.3g}, "
-                      f"lambda = {r['lambda']:.3g})")
-    if r["h_outlet"] <= r["h_c"]:
-        return None, ("closed form rejected: its gap falls below h_c in the wrap, where it "
-                      "lands the web (h -> 0) and the FE models rest it on the asperities")
-    lam = case.lam
-    fit = cf.width_factor(lam)
-    wide = H0_WIDE * (1.0 - LEAK_CENTER / lam)
-    shift = case.h_scale * (wide - fit)              # corrected minus fitted gap [m]
-    if quantity == "mu":
-        x, h = r.fields["x"], r.fields["h"]
-        g, gw = np.polynomial.legendre.leggauss(200)
-        s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
-        hq = np.interp(s, x, h)
-        est = _relative(_friction(case, np.maximum(hq + shift, 0.0), 0.5 * gw), r["mu"])
-    elif quantity == "h_min":   # Eq. 21 has no exit constriction: compare with its 0.716
-        est = abs((r["h_min"] + shift) * 0.716 / r["h_min"] - 1.0)
-    else:
-        est = abs(shift / r["h_center"])
-    est *= SAFETY
-    return est, f"closed form: estimated {quantity} error {est:.2g} (fit against the wide-web " \
-                f"gap with 1.48/lambda edge leakage)"
+def _verdict(name: str, errors: dict, quantities, tol: float) -> tuple[bool, str]:
+    """Whether the errors meet ``tol`` in every judged quantity, and the text saying so."""
+    missing = [q for q in quantities if errors.get(q) is None]
+    if missing:
+        return False, f"{name}: no error estimate of {', '.join(_LABEL[q] for q in missing)}"
+    worst = max(quantities, key=lambda q: errors[q])
+    ok = errors[worst] <= tol
+    return ok, (f"{name}: estimated {_LABEL[worst]} error {errors[worst]:.2g} "
+                f"{'<=' if ok else '>'} {tol:g}")
 
 
-def _fe1d_estimate(case: Case, r: Result, quantity: str):
-    lam = case.lam
-    if quantity == "mu":
-        d = r.diagnostics
-        h = d.wrap_h
-        # edge leakage lowers a flying film; a web resting on its asperities (h ~ h_c) stays
-        lowered = np.maximum(h * (1.0 - LEAK_CENTER / lam), np.minimum(h, r["h_c"]))
-        est = _relative(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx),
-                        r["mu"])
-    else:
-        est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam
-    est *= SAFETY
-    return est, f"fe1d: estimated {quantity} error {est:.2g} (edge leakage ~1.5/lambda left out)"
+def _with_errors(r: Result, errors: dict, basis: str) -> Result:
+    summary = r.summary.replace(**{f"error_{q}": v for q, v in errors.items()},
+                                error_basis=basis)
+    return dataclasses.replace(r, summary=summary)
 
 
 def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = None,
                raise_on_failure: bool = True) -> Result:
-    """Solve with the cheapest model whose estimated relative error in ``options.quantity``
-    is within ``options.tol``. The FE options go to the FE model that is used; ``initial``
-    is accepted for sweeps and not used (each point picks its model afresh)."""
-    quantity, tol = options.quantity, options.tol
-    why = []
+    """Solve with the cheapest model whose stated errors meet ``options.tol`` in the
+    judged quantities. The FE options go to the FE model that is used; ``initial`` is
+    accepted for sweeps and not used (each point picks its model afresh)."""
+    quantities, tol = judged(options.quantity), options.tol
+    fe2d_options = fe_options(options, FE2DOptions)
     if case.grooved:   # only the 2-D film carries the grooves across the width
-        r = fe2d.solve_case(case, fe_options(options, FE2DOptions),
-                            raise_on_failure=raise_on_failure)
-        return _answer(r, FE2D_ERROR, quantity, tol,
+        r = fe2d.solve_case(case, fe2d_options, raise_on_failure=raise_on_failure)
+        return _answer(r, quantities, tol,
                        ["grooved roller: only fe2d solves the land and groove film"])
-    r = closed.solve_case(case, ClosedFormOptions())
+    why = []
     if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
-        return _answer(r, None, quantity, tol,
+        r = _closed(case)
+        if not r.summary.converged:
+            raise NoAdmissibleSolution(
+                f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), beyond "
+                f"the FE models, and the closed form has no answer: "
+                f"{r.summary.solver_message}")
+        return _answer(r, quantities, tol,
                        [f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), "
                         "beyond the FE models; the air film is negligible: closed form"])
-    est, text = _closed_estimate(case, r, quantity)
+    r = _closed(case)
+    ok, text = _closed_verdict(r, quantities, tol)
     why.append(text)
-    if est is None or est > tol:
-        r = fe1d.solve_case(case, fe_options(options, FE1DOptions),
-                            raise_on_failure=raise_on_failure)
-        est, text = _fe1d_estimate(case, r, quantity)
-        why.append(text)
-        if est > tol:
-            r = fe2d.solve_case(case, fe_options(options, FE2DOptions),
-                                raise_on_failure=raise_on_failure)
-            est = FE2D_ERROR
-            why.append(f"fe2d: the reference; mesh error about {FE2D_ERROR:g}")
-    return _answer(r, est, quantity, tol, why)
+    if ok:
+        return _answer(r, quantities, tol, why)
+    r = fe1d.solve_case(case, fe_options(options, FE1DOptions),
+                        raise_on_failure=raise_on_failure)
+    ok, text = _verdict("fe1d", stated_errors(r), quantities, tol)
+    why.append(text + " (edge leakage ~1.5/lambda left out)")
+    if ok and r.summary.converged:
+        return _answer(r, quantities, tol, why)
+    r = fe2d.solve_case(case, fe2d_options, raise_on_failure=raise_on_failure)
+    _, text = _verdict("fe2d", stated_errors(r), quantities, tol)
+    return _answer(r, quantities, tol, why + [text + " (the reference: its mesh error)"])
 
 
-def _answer(r: Result, est, quantity, tol, why) -> Result:
+def _closed(case: Case) -> Result:
+    """The closed form's result with its stated errors (an unanswered point as a result with
+    ``converged = False``)."""
+    try:
+        r = closed.solve_case(case, ClosedFormOptions())
+    except NoAdmissibleSolution as err:
+        if getattr(err, "result", None) is None:
+            raise
+        return err.result
+    if r.summary.get("error_h_center") is None and r.summary.converged:
+        r = _with_errors(r, closed_form_errors(case, r.summary, r.fields),
+                         "model: Eq. 21's fit against the wide-web gap 0.643 R eps^(2/3) "
+                         "with 1.48/lambda edge leakage (doubled)")
+    return r
+
+
+def _closed_verdict(r: Result, quantities, tol) -> tuple[bool, str]:
+    s = r.summary
+    if not s.converged:
+        return False, f"closed form: no answer ({s.solver_message})"
+    if not s.eq21_valid:
+        return False, (f"closed form rejected: outside Eq. 21's range (beta = {s.beta:.3g}, "
+                       f"lambda = {s.lambda_:.3g})")
+    if s.h_outlet <= s.h_c:
+        return False, ("closed form rejected: its gap falls below h_c in the wrap, where it "
+                       "lands the web (h -> 0) and the FE models rest it on the asperities")
+    return _verdict("closed form", stated_errors(r), quantities, tol)
+
+
+def _answer(r: Result, quantities, tol, why) -> Result:
     """The chosen model's result, saying which model answered and why."""
     used = r["model"]
-    summary = r.summary.replace(model=NAME, model_used=used, estimated_error=est,
-                                quantity=quantity, tolerance=tol,
-                                why="; ".join(why) + f" -> {used}")
+    errors = stated_errors(r)
+    known = [errors[q] for q in quantities if errors[q] is not None]
+    summary = r.summary.replace(model=NAME, model_used=used,
+                                estimated_error=max(known) if known else None,
+                                quantity="all" if len(quantities) > 1 else quantities[0],
+                                tolerance=tol, why="; ".join(why) + f" -> {used}")
     return dataclasses.replace(r, summary=summary)
 
 

@@ -32,7 +32,9 @@ from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Diagnostics, Fields, Result, Summary
 from .admissible import _no_admissible_solution, admissibility
-from .refine import adapted_nodes, minimum, wrap_samples
+from .mesh_error import MeshError, estimate_mesh_error, summary_keys
+from .readout import pressure_and_gradient, read_out
+from .refine import adapted_nodes, minimum
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
            "admissibility"]
@@ -123,30 +125,72 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     """Solve ``case`` with the model ``disc`` and its ``options``; see the module text.
 
     A start from ``initial`` (continuation) that fails or ends inadmissible is retried from
-    a cold start, so the answer never depends on the path. Raises
-    :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when no converged,
-    admissible solution is found, unless ``raise_on_failure`` is False.
+    a cold start, so the answer never depends on the path. A cold start that fails or ends
+    inadmissible is retried from the model's safe start on the same mesh, then on finer
+    meshes. Raises :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when
+    no converged, admissible solution is found, unless ``raise_on_failure`` is False.
     """
     thin_film_check(case)
     wrap_length_check(case)
     t0 = time.perf_counter()
     prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
+    try:
+        start, problem, u, info, options = _answer(disc, case, prm, options, initial)
+    except (np.linalg.LinAlgError, ArithmeticError) as err:
+        raise ConvergenceError(
+            f"{disc.name}: the discrete problem could not be built or solved "
+            f"({type(err).__name__}: {err}); cells this short or this many lose the "
+            "precision the solver needs: a lower level or webfem's default mesh may help",
+            None) from None
+    mesh_error = MeshError()
+    if info["converged"] and options.estimate:
+        problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
+                                                            options, _iterate)
+        info["iterations"] += mesh_error.iterations
+        if finer is not None:
+            info["history"] = list(info["history"]) + list(finer["history"])
+            info.update(residual=finer["residual"], reason=finer.get("reason", "") + (
+                f" (on the mesh the error estimate asked for, {mesh_error.rounds} "
+                f"bisection{'s' if mesh_error.rounds > 1 else ''} of every cell)"))
+    elapsed = time.perf_counter() - t0
+    result = _result(disc, case, problem, u, prm, info, elapsed, options, start.solver,
+                     mesh_error)
+    if not result.summary.converged and raise_on_failure:
+        raise ConvergenceError(f"{disc.name} ({options.method}) did not converge: "
+                               f"{info['reason']} after {info['iterations']} iterations, "
+                               f"residual {info['residual']:.3e}", result, info.get("history"))
+    return result
+
+
+def _ok(info, why) -> bool:
+    return bool(info["converged"]) and not why
+
+
+def _hopeless(info) -> bool:
+    """A failure no other start or finer mesh mends: the residual stalls at its rounding
+    floor above the tolerance (a finer mesh only raises the floor)."""
+    return "rounding floor" in info.get("reason", "")
+
+
+def _answer(disc, case, prm, options, initial):
+    """The remedies a careful analyst tries, in order: the continued start (``initial``),
+    the cold start, the model's safe start on the same mesh, the direct state refined, finer
+    meshes. Returns ``(start, problem, u, info, options)`` of the answer, or of the last
+    attempt with ``info["converged"]`` False and the reason."""
     with stage(f"{disc.name} start"):
         start = disc.start(case, prm, options, initial)
     safe = case if hasattr(disc, "safe_start") else None
     problem, u, info = _solve_and_refine(disc, start, prm, options,
                                          safe if initial is None else None)
     why = admissibility(case, problem, u, prm) if info["converged"] else None
-    if initial is not None and (not info["converged"] or why):
+    if initial is not None and not _ok(info, why):
         cold = disc.start(case, prm, options, None)
         problem2, u2, info2 = _solve_and_refine(disc, cold, prm, options, safe)
-        info2["iterations"] += info["iterations"]
-        info2["history"] = list(info["history"]) + list(info2["history"])
-        info2["reason"] = (f"{info2.get('reason', '')} (cold start after the continued "
-                           f"start {'ended inadmissible: ' + why if why else 'failed'})")
+        _merge(info2, info, f"cold start after the continued start "
+                            f"{'ended inadmissible: ' + why if why else 'failed'}")
         start, problem, u, info = cold, problem2, u2, info2
         why = admissibility(case, problem, u, prm) if info["converged"] else None
-    if why and info["converged"]:
+    if not _ok(info, why) and not _hopeless(info):
         start, problem, u, info, why = _from_safe_start(disc, case, prm, options, start,
                                                         problem, u, info, why)
     if info.pop("unrefined", False) and why:
@@ -156,6 +200,7 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
         why = admissibility(case, problem, u, prm) if info["converged"] else None
     if why:
         _no_admissible_solution(case, prm, why)
+    if not _ok(info, why) and not _hopeless(info):
         start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
                                                                  start, problem, u, info, why)
     if why and info["converged"]:
@@ -163,21 +208,24 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
     if why:
         info["converged"] = False
         info["reason"] = f"converged to an inadmissible field: {why}"
-    notes = _user_mesh_check(disc, case, problem, u, prm, options) if info["converged"] else []
-    elapsed = time.perf_counter() - t0
-    result = _result(disc, case, problem, u, prm, info, elapsed, options, start.solver, notes)
-    if not result.summary.converged and raise_on_failure:
-        raise ConvergenceError(f"{disc.name} ({options.method}) did not converge: "
-                               f"{info['reason']} after {info['iterations']} iterations, "
-                               f"residual {info['residual']:.3e}", result, info.get("history"))
-    return result
+    return start, problem, u, info, options
+
+
+def _merge(info: dict, before: dict, note: str = "") -> None:
+    """``info`` of a solve that followed the solve of ``before``: iterations and residual
+    history added, ``note`` appended to the reason."""
+    info["iterations"] += before["iterations"]
+    info["history"] = list(before["history"]) + list(info["history"])
+    if note:
+        info["reason"] = f"{info.get('reason', '')} ({note})"
 
 
 def _from_safe_start(disc, case, prm, options, start, problem, u, info, why):
-    """A converged but inadmissible state on the starting mesh may be a spurious branch of
-    the nonlinear problem, not a mesh too coarse: the model's safe start on the same mesh
-    (``disc.safe_start``, e.g. the 1-D model's continuation from the Eshel-Elrod problem)
-    is tried first. Its answer is taken only when it is converged and admissible."""
+    """A state on the starting mesh that failed, or converged but is inadmissible, may be a
+    spurious branch of the nonlinear problem or a poor start, not a mesh too coarse: the
+    model's safe start on the same mesh (``disc.safe_start``, e.g. the 1-D model's
+    continuation from the Eshel-Elrod problem) is tried first. Its answer is taken only when
+    it is converged and admissible."""
     if not hasattr(disc, "safe_start"):
         return start, problem, u, info, why
     with stage(f"{disc.name} safe start"):
@@ -186,12 +234,11 @@ def _from_safe_start(disc, case, prm, options, start, problem, u, info, why):
         return start, problem, u, info, why
     problem2, u2, info2 = _solve_and_refine(disc, safe, prm, options)
     why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
-    if not info2["converged"] or why2:
+    if not _ok(info2, why2):
         return start, problem, u, info, why
-    info2["iterations"] += info["iterations"]
-    info2["history"] = list(info["history"]) + list(info2["history"])
-    info2["reason"] = (f"{info2.get('reason', '')} (from the safe start on the same mesh: "
-                       f"the direct start ended on an inadmissible branch: {why})")
+    _merge(info2, info, "from the safe start on the same mesh: the direct start "
+                        + (f"ended on an inadmissible branch: {why}" if why
+                           else f"failed: {info.get('reason', '')}"))
     return safe, problem2, u2, info2, None
 
 
@@ -202,122 +249,72 @@ REMEDY_MAX_DOFS = 1.2e5
 
 
 def _on_finer_meshes(disc, case, prm, options, start, problem, u, info, why):
-    """A converged but inadmissible state (a coarse mesh that lets the web through its
-    asperities): solve again from cold on meshes one and two levels finer, as an analyst
-    would (the second only while it stays below :data:`REMEDY_MAX_DOFS`). Returns the
-    first admissible solution, else the last one tried."""
+    """A state that failed, or converged but is inadmissible (a coarse mesh that lets the
+    web through its asperities): solve again from cold on meshes one and two levels finer,
+    as an analyst would (the second only while it stays below :data:`REMEDY_MAX_DOFS`).
+    Returns the first admissible solution, else the last one tried."""
     limit = type(options).__dataclass_fields__["level"].metadata["hi"]
     first = options.level + 1
     for level in range(first, min(first + 1, limit) + 1):
         if level > first and problem.n_dofs * 4 > REMEDY_MAX_DOFS:
             break     # a 2-D mesh two levels finer: minutes and gigabytes for a likely no
         finer_options = options.replace(level=level)
-        cold = disc.start(case, prm, finer_options, None)
-        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, finer_options)
-        info2["iterations"] += info["iterations"]
-        info2["history"] = list(info["history"]) + list(info2["history"])
+        with stage(f"{disc.name} on mesh level {level}"):
+            cold = disc.start(case, prm, finer_options, None)
+            problem2, u2, info2 = _solve_and_refine(disc, cold, prm, finer_options)
         why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
-        info2["reason"] = (f"{info2.get('reason', '')} (on mesh level {level}: level "
-                           f"{options.level} gave an inadmissible field: {why})")
+        _merge(info2, info, f"on mesh level {level}: level {options.level} "
+                            + (f"gave an inadmissible field: {why}" if why
+                               else f"did not converge: {info.get('reason', '')}"))
         start, problem, u, info, why = cold, problem2, u2, info2, why2
         options = finer_options
-        if info["converged"] and not why:
+        if _ok(info, why) or _hopeless(info):
             break
     return start, problem, u, info, options, why
 
 
-#: A user mesh is checked when its cells near the wrap edges are longer than this, in units
-#: of R eps^(1/3) (the film's entry length; webfem's graded mesh puts 0.08 there).
-USER_CELL_LIMIT = 0.5
-
-
-def _user_mesh_check(disc, case: Case, problem, u, prm, options) -> list[str]:
-    """For a user mesh coarser than the film's length scale near the wrap edges: a warning
-    with an a-posteriori error estimate (the change of the gaps when every cell is halved)."""
-    if options.mesh is None and options.nodes is None:
-        return []
-    X = problem.X
-    mid = 0.5 * (X[1:] + X[:-1])
-    near = np.abs(np.abs(mid) - 0.5 * prm.beta) < 5.0
-    longest = float(np.diff(X)[near].max()) if near.any() else float(np.ptp(X))
-    if longest <= USER_CELL_LIMIT:
-        return []
-    finer, u_fine = disc.refined(problem, u, prm, np.sort(np.concatenate([X, mid])), options)
-    u_fine, info = _iterate(finer, u_fine, prm, options)
-    text = (f"user mesh: cells up to {longest:.3g} R eps^(1/3) long near the wrap edges, "
-            f"where the film changes over about one R eps^(1/3) (webfem's graded mesh: 0.08)")
-    if not info["converged"]:
-        return [text + "; on the mesh with every cell halved the solve does not converge: "
-                "its error is unknown and likely large"]
-    a = problem.gap(u, prm, np.array([0.0])), finer.gap(u_fine, prm, np.array([0.0]))
-    b = minimum(problem, u, prm)[0], minimum(finer, u_fine, prm)[0]
-    dc, dm = abs(a[1][0] / a[0][0] - 1.0), abs(b[1] / b[0] - 1.0)
-    return [text + f"; halving every cell changes h_center by {100 * dc:.2g} % and h_min by "
-            f"{100 * dm:.2g} % (an estimate of this mesh's error): refine the mesh or use "
-            "webfem's graded one"]
-
-
-def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) -> Result:
-    Hs, Xs = case.h_scale, case.x_scale
-    pts, wts = wrap_samples(problem.X, prm.beta)
-    h = problem.gap(u, prm, pts) * Hs
-    p, dpdx = _pressure_and_gradient(case, problem, u, pts)
-    loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
-    mu = float(np.sum(loc["mu"] * wts) / prm.beta)
-    shares = [float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3)]
-    Pf = (p - case.air.ambient_pressure) / case.p_bar
-    Pc = prm.land * forms.contact_law(h / Hs, prm.as_form_args())[0]  # lands only
-    contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
+def _result(disc, case, problem, u, prm, info, elapsed, options, solver,
+            mesh_error: MeshError) -> Result:
+    Hs = case.h_scale
+    ro = read_out(case, problem, u, prm)
     # at the onset of slip the sliding speed is small: the asperities hold with the static
     # mu_cc on the share of the wrap load they carry, the film with nothing
-    idler = idler_check(case, case.friction.mu_cc * contact_share)
-    Hmin, Xmin = minimum(problem, u, prm)
-    e = 0.5 * prm.beta
-    H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
+    idler = idler_check(case, case.friction.mu_cc * ro.contact_share)
     extra = dict(disc.summary_extra(case, problem, options))
     if hasattr(disc, "summary_state"):
-        extra.update(disc.summary_state(case, problem, u, prm, pts, wts))
-    warnings = list(_warnings(case, options)) + list(extra.pop("warnings", [])) + notes
-    slip = slip_warning(case, Hmin * Hs)
+        extra.update(disc.summary_state(case, problem, u, prm, ro.pts, ro.wts))
+    warnings = (list(_warnings(case, options)) + list(extra.pop("warnings", []))
+                + list(mesh_error.notes))
+    slip = slip_warning(case, ro.h_min)
     if slip:
         warnings.append(slip)
+    shares, mu = ro.shares, ro.mu
     summary = Summary(
-        model=disc.name, h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
-        h_min=Hmin * Hs, x_min=Xmin * Xs, mu=mu,
+        model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,
+        h_min=ro.h_min, x_min=ro.x_min, mu=mu,
         delta_T=float(delta_T_from_mu(mu, case.tension_eff, case.B)),
         regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
         eq21_valid=bool(eq21_valid(case.beta, case.lam)),
         converged=bool(info["converged"]), iterations=int(info["iterations"]),
         n_dofs=int(problem.n_dofs), solve_time_s=elapsed, residual=float(info["residual"]),
         h_c=float(prm.H_c * Hs), sigma=case.sigma, share_boundary=shares[0],
-        share_mixed=shares[1], share_fluid=shares[2], contact_share=contact_share,
+        share_mixed=shares[1], share_fluid=shares[2], contact_share=ro.contact_share,
         eps=case.eps, kappa=case.kappa, U=case.U, U_slide=case.U_slide,
         method=options.method, mesh=disc.mesh_text(problem, options),
         warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
         solver_message=info.get("reason", ""), T_eff=case.tension_eff,
         bending_stiffness_used=case.bending_used, effects=included(case), **idler,
-        **{"n_cells": len(problem.X) - 1, **extra})
+        **summary_keys(mesh_error), **{"n_cells": len(problem.X) - 1, **extra})
     diagnostics = Diagnostics(
         method=options.method, history=tuple(info.get("history", [])),
         reason=info.get("reason", ""), continuation=tuple(info.get("steps", [])),
-        options=options, wrap_h=h, wrap_w=wts / prm.beta, wrap_p=p, wrap_dpdx=dpdx,
+        options=options, wrap_h=ro.h, wrap_w=ro.wts / prm.beta, wrap_p=ro.p,
+        wrap_dpdx=ro.dpdx,
         omegas=info.get("omegas"),
         block_iterations=info.get("block_iterations"),
         solver={**solver, "problem": problem, "state": u})
     return Result(case, summary, _node_fields(case, problem, u, prm), diagnostics,
                   disc.film(case, problem, u, prm))
-
-
-def _pressure_and_gradient(case: Case, problem, u, X) -> tuple[np.ndarray, np.ndarray]:
-    """Absolute (width-averaged) film pressure [Pa] and its x-derivative [Pa/m] at scaled
-    points X inside cells (a central difference well inside the cell: the pressure is a
-    polynomial there)."""
-    delta = 1e-7
-    P = problem.pressure(u, np.concatenate([X, X - delta, X + delta]))
-    n = len(X)
-    dPdX = (P[2 * n:] - P[n:2 * n]) / (2.0 * delta)
-    return (case.air.ambient_pressure + P[:n] * case.p_bar,
-            dPdX * case.p_bar / case.x_scale)
 
 
 def _warnings(case: Case, options):
@@ -334,7 +331,7 @@ def _node_fields(case: Case, problem, u, prm: FoilParameters) -> Fields:
     h = H * Hs
     # one-sided differences at the ends (the pressure is only defined inside the domain)
     inner = np.clip(X, X[0] + 1e-6, X[-1] - 1e-6)
-    p, dpdx = _pressure_and_gradient(case, problem, u, inner)
+    p, dpdx = pressure_and_gradient(case, problem, u, inner)
     p_rel = p - case.air.ambient_pressure
     return Fields(x=X * case.x_scale, h=h, w=h - forms.departure(X, prm.beta) * Hs,
                   p_rel=p_rel, p=p, p_contact=forms.contact_law(H, prm.as_form_args())[0]

@@ -30,10 +30,12 @@ True
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..case import Case
-from ..errors import InputError
+from ..errors import ConvergenceError, InputError
 from ..fem import forms
 from ..fem.mesh import graded_nodes, refine_nodes
 from ..fem.meshfile import read_x_nodes
@@ -41,6 +43,7 @@ from ..fem.scaling import FoilParameters
 from ..result import Result
 from .driver import Start, minimum, solve_fe
 from .line import FoilBearing1D
+from .model_error import fe1d_errors
 from .options import FE1DOptions
 
 __all__ = ["FoilParameters", "FoilBearing1D", "LINE", "solve", "solve_case", "NAME"]
@@ -171,6 +174,10 @@ class _Line:
         finer = _cached(np.asarray(X, float), options.order)
         return finer, _transfer(problem, u, prm, finer)
 
+    def remeshed(self, problem, u, prm, X, Z, options):
+        """The problem on the nodes X (coarser or finer) and ``u`` carried over to it."""
+        return self.refined(problem, u, prm, X, options)
+
     def mesh_text(self, problem, options) -> str:
         return f"{line_mesh_text(problem.X, options)}, P{options.order}/Hermite"
 
@@ -205,7 +212,27 @@ def solve_case(case: Case, options: FE1DOptions, *, initial: Result | None = Non
     from ..physics.validity import grooves_refused
 
     grooves_refused(case, "fe1d")
-    return solve_fe(LINE, case, options, initial, raise_on_failure)
+    try:
+        r = solve_fe(LINE, case, options, initial, raise_on_failure)
+    except ConvergenceError as err:
+        if err.result is not None:
+            err.result = with_model_error(err.result)
+        raise
+    return with_model_error(r)
+
+
+def with_model_error(r: Result) -> Result:
+    """``r`` with its stated errors the mesh error plus the edge leakage the infinitely wide
+    model leaves out (:func:`webfem.models.model_error.fe1d_errors`); unchanged without a
+    mesh error estimate (``estimate = False``)."""
+    s = r.summary
+    if s.error_h_center is None:
+        return r
+    model = fe1d_errors(r.case, s, r.diagnostics)
+    errors = {f"error_{q}": s.get(f"error_{q}", 0.0) + e for q, e in model.items()}
+    basis = (f"mesh: {s.error_basis}; model: the edge leakage left out (1.48/lambda in the "
+             "central gap, 1.87/lambda in the minimum, doubled)")
+    return dataclasses.replace(r, summary=s.replace(**errors, error_basis=basis))
 
 
 def solve(case: Case, options: FE1DOptions | None = None, *, initial: Result | None = None,

@@ -470,6 +470,16 @@ class _Film:
         finer.direct = True
         return finer, _transfer2d(problem, u, prm, finer)
 
+    def remeshed(self, problem, u, prm, X, Z, options):
+        """The problem on the nodes X x Z (coarser or finer; the same grooves and domain)
+        and ``u`` carried over to it."""
+        other = FoilBearing2D(X, Z, order=options.order, grooves=problem.grooves,
+                              web_edges=problem.web_edges,
+                              ambient_grooves=problem.ambient_grooves)
+        other.direct = True
+        other.line_start = problem.line_start
+        return other, _transfer2d(problem, u, prm, other)
+
     def mesh_text(self, problem, options) -> str:
         if not problem.web_edges:
             where = "periodic groove cell (land centre to groove centre)"

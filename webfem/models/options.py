@@ -255,8 +255,8 @@ class FE1DOptions(Options):
     model: ClassVar[str] = "fe1d"
     entry: float = option(40.0, "length of the entry and exit zones, units of R eps^(1/3)",
                           "float", lo=0.0, lo_open=True, hi=200.0)
-    level: int = option(0, "uniform refinement level (each bisects every cell)", "int",
-                        lo=0, hi=8)
+    level: int = option(0, "uniform refinement level (each bisects every cell; the error "
+                        "estimate refines further where it must)", "int", lo=0, hi=3)
     order: int = option(2, "Lagrange order of the film pressure (2: P2/Q2, 1: P1/Q1)", "int",
                         lo=1, hi=2)
     compressible: bool = option(True, "compressible (isothermal ideal gas) film", "bool")
@@ -282,6 +282,14 @@ class FE1DOptions(Options):
                                 "failure", "bool")
     backtrack: float = option(1.5, "Picard: undo a step that raises the residual by more "
                               "than this factor (0: off)", "float", lo=0.0, hi=1e6)
+    estimate: bool = option(True, "estimate the mesh error of h_center, h_min, mu and the "
+                            "contact share from a second mesh with cells twice as long, and "
+                            "refine until each meets error_tol (false: no estimate, the "
+                            "error_* keys null)", "bool")
+    error_tol: float = option(1e-3, "target of the mesh error estimates (relative; mu "
+                              "against max(|mu|, 0.1 mu_cc), the contact share absolute): "
+                              "every cell is bisected until each estimate meets it", "float",
+                              lo=1e-8, hi=1.0)
     mesh: str | None = option(None, "mesh file whose x nodes [m] replace the graded mesh "
                               "(e.g. one of meshes/)", "path", none=True)
     nodes: Any = option(None, "starting nodes in scaled X (API only; mesh= reads them from a "
@@ -319,7 +327,8 @@ class FE2DOptions(FE1DOptions):
         """The 1-D options of the infinitely wide start (same mesh and physics)."""
         keep = ("entry", "level", "compressible", "contact", "floor", "adapt", "adapt_ratio",
                 "min_cell", "mesh", "nodes")
-        return FE1DOptions(**{k: getattr(options, k) for k in keep})
+        # the 1-D solution only starts the 2-D solve: its own mesh error is not stated
+        return FE1DOptions(estimate=False, **{k: getattr(options, k) for k in keep})
 
 
 _FE_NAMES = [f.name for f in dataclasses.fields(FE2DOptions) if f.name != "tol"]
@@ -341,10 +350,12 @@ def _auto_fields():
 @dataclass(frozen=True, repr=False)
 class _AutoBase(Options):
     model: ClassVar[str] = "auto"
-    quantity: str = option("mu", "quantity whose relative error the choice bounds", "choice",
-                           choices=("mu", "h_center", "h_min"))
-    tol: float = option(0.01, "relative error the chosen model must meet in quantity", "float",
-                        lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    quantity: str = option("all", "quantity whose error the choice bounds (all: h_center, "
+                           "h_min, mu and the contact share, each)", "choice",
+                           choices=("all", "mu", "h_center", "h_min", "contact_share"))
+    tol: float = option(0.01, "error the chosen model must meet in each judged quantity "
+                        "(relative; mu against max(|mu|, 0.1 mu_cc), the contact share "
+                        "absolute)", "float", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     fe_tol: float | None = option(None, "residual tolerance of the FE model used (none: its "
                                   "default)", "float", lo=0.0, lo_open=True, hi=1e-2,
                                   none=True)

@@ -89,7 +89,8 @@ def refinement(case: Case, levels=(0, 1, 2, 3), levels2d=(0, 1, 2),
     rows = []
     for model, order in SEQUENCES:
         seq = levels if model == "fe1d" else levels2d
-        res = [solve(case, model=model, level=lv, order=order, adapt=0) for lv in seq]
+        res = [solve(case, model=model, level=lv, order=order, adapt=0, estimate=False)
+               for lv in seq]
         for lv, r in zip(seq, res):
             rows.append({"model": model, "order": order, "level": lv, "n_dofs": r["n_dofs"],
                          "time_s": r["solve_time_s"],

@@ -87,7 +87,8 @@ def attempt(case: Case, model: str, opts: dict) -> dict:
         warnings.simplefilter("ignore", ValidityWarning)   # the map crosses ranges on purpose
         warnings.simplefilter("ignore", RuntimeWarning)    # diverging iterates overflow
         try:
-            r = solve(case, model=model, **opts)
+            # the schemes on the given mesh: no error estimate (its solves would be Newton's)
+            r = solve(case, model=model, **{"estimate": False, **opts})
         except ConvergenceError as err:
             r = err.result
         except (FloatingPointError, ValueError, RuntimeError, np.linalg.LinAlgError) as err:

@@ -1,0 +1,171 @@
+"""The mesh error of an FE answer, estimated from the solution itself, and the refinement it
+asks for.
+
+The answer's mesh is compared with the mesh that has every other node (cells twice as long,
+the same grading; the nodes on the wrap edges and on every land/groove edge kept). The
+change of each quantity a user reads (:data:`~webfem.models.readout.READ_QUANTITIES`)
+between the two is its stated error. For a scheme converging at order p, Richardson's
+estimate of the error on the finer mesh is that change over 2^p - 1, so for any order
+p >= 1 the change bounds it (Q2 converges at order 4 in the central gap: the statement is
+then about 15 times the true error there; where the exit constriction or a landing web is
+not yet resolved, the convergence is slower and the margin smaller). tests/test_mesh_error.py
+checks the statement against mesh-converged solutions on smooth and grooved cases.
+
+While an estimate exceeds ``options.error_tol``, every cell of the answer's mesh is
+bisected and the case solved again from the answer (the old answer's mesh is then the
+coarser one), up to :data:`MAX_DOFS` unknowns.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..case import Case
+from ..fem.scaling import FoilParameters
+from ..progress import stage
+from .admissible import admissibility
+from .readout import READ_QUANTITIES, errors_between, read_out
+
+__all__ = ["MeshError", "estimate_mesh_error", "coarser_nodes", "bisected_nodes",
+           "summary_keys", "MAX_DOFS"]
+
+#: The refinement the estimate asks for stops before a mesh of more unknowns than this (a
+#: Newton step at 2e5 unknowns takes about a second and 1.2 GB on these machines).
+MAX_DOFS = 2.5e5
+
+
+@dataclass
+class MeshError:
+    """The estimate: per quantity (None: no estimate could be made), how it was obtained,
+    the notes a result should carry, and the Newton iterations it took."""
+
+    errors: dict[str, float | None] = field(default_factory=lambda: dict.fromkeys(
+        READ_QUANTITIES))
+    basis: str = ""
+    notes: list[str] = field(default_factory=list)
+    iterations: int = 0
+    rounds: int = 0
+
+
+def coarser_nodes(nodes: np.ndarray, keep=()) -> np.ndarray:
+    """Every other node of ``nodes`` (sorted), the ends and the nodes nearest to ``keep``
+    (the wrap edges, the land/groove edges) kept. None when fewer than 3 nodes would be left.
+
+    >>> coarser_nodes(np.arange(7.0), keep=[3.0]).tolist()
+    [0.0, 2.0, 3.0, 4.0, 6.0]
+    """
+    X = np.asarray(nodes, float)
+    take = np.zeros(X.size, dtype=bool)
+    take[::2] = True
+    take[[0, -1]] = True
+    for k in keep:
+        take[int(np.argmin(np.abs(X - k)))] = True
+    return X[take] if take.sum() >= 3 and take.sum() < X.size else None
+
+
+def bisected_nodes(nodes: np.ndarray) -> np.ndarray:
+    """Every cell of ``nodes`` halved."""
+    X = np.asarray(nodes, float)
+    return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])]))
+
+
+def _features(problem, prm: FoilParameters):
+    """Nodes that the coarser mesh must keep: the wrap edges in X, the land/groove edges in
+    Z (the steps of the wrap pressure and of the gap lie on element edges)."""
+    e = 0.5 * prm.beta
+    keep_z = ()
+    Z = getattr(problem, "Z", None)
+    grooves = getattr(problem, "grooves", None)
+    if Z is not None and grooves is not None:
+        keep_z = grooves.edges(float(Z[0]), float(Z[-1]))
+    return (-e, e), keep_z
+
+
+def _newton_options(options):
+    return options.replace(method="newton") if options.method != "newton" else options
+
+
+def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, options,
+                        iterate) -> tuple:
+    """The estimate for the solved state ``u`` of ``problem``, refining while it exceeds
+    ``options.error_tol``. ``iterate(problem, u0, prm, options) -> (u, info)`` solves on a
+    mesh. Returns ``(problem, u, info_or_None, MeshError)``: the answer's problem and state
+    (finer than the input when the estimate asked for refinement; ``info`` is then that
+    solve's, else None)."""
+    out = MeshError()
+    here = read_out(case, problem, u, prm)
+    keep_x, keep_z = _features(problem, prm)
+    Z = getattr(problem, "Z", None)
+    Xc = coarser_nodes(problem.X, keep_x)
+    Zc = coarser_nodes(Z, keep_z) if Z is not None else None
+    if Z is not None and Zc is None:
+        Zc = Z           # too few cells across to coarsen: the estimate is then along x only
+    if Xc is not None:
+        with stage(f"{disc.name} error estimate on the coarser mesh"):
+            coarse, uc = disc.remeshed(problem, u, prm, Xc, Zc, options)
+            uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
+        out.iterations += info["iterations"]
+        if info["converged"]:
+            out.errors = errors_between(case, here, read_out(case, coarse, uc, prm))
+            out.basis = (f"change from the mesh with cells twice as long ({coarse.n_dofs:,} "
+                         f"against {problem.n_dofs:,} unknowns)")
+    user_mesh = options.mesh is not None or options.nodes is not None
+    growth = 2 if Z is None else 4
+    last_info = None
+    while _exceeds(out.errors, options.error_tol) and not user_mesh:
+        if problem.n_dofs * growth > MAX_DOFS:
+            out.notes.append(_cap_note(out, problem.n_dofs * growth, options.error_tol))
+            break
+        Xf = bisected_nodes(problem.X)
+        Zf = bisected_nodes(Z) if Z is not None else None
+        fine, uf = disc.remeshed(problem, u, prm, Xf, Zf, options)
+        with stage(f"{disc.name} error estimate asks for a finer mesh, {fine.n_dofs:,} "
+                   "unknowns"):
+            uf, info = iterate(fine, uf, prm, options)
+        out.iterations += info["iterations"]
+        if not info["converged"] or admissibility(case, fine, uf, prm):
+            out.notes.append(f"the mesh with every cell halved ({fine.n_dofs:,} unknowns) gave "
+                             "no admissible answer from this one; the estimate stays that of "
+                             "this mesh")
+            break
+        finer = read_out(case, fine, uf, prm)
+        out.errors = errors_between(case, finer, here)
+        out.basis = (f"change from the mesh with cells twice as long ({problem.n_dofs:,} "
+                     f"against {fine.n_dofs:,} unknowns)")
+        problem, u, here, Z, last_info = fine, uf, finer, getattr(fine, "Z", None), info
+        out.rounds += 1
+    if out.errors["h_center"] is None:
+        out.basis = "none: no coarser mesh solved"
+        out.notes.append("no mesh error estimate: the mesh with cells twice as long did not "
+                         "converge")
+    elif user_mesh and _exceeds(out.errors, options.error_tol):
+        out.notes.append(_user_note(out, options.error_tol))
+    return problem, u, last_info, out
+
+
+def _exceeds(errors, tol) -> bool:
+    return any(v is None or v > tol for v in errors.values())
+
+
+def _worst(errors) -> str:
+    name = max(errors, key=lambda k: errors[k] if errors[k] is not None else np.inf)
+    return f"{name} {errors[name]:.2g}"
+
+
+def _cap_note(out: MeshError, n: int, tol: float) -> str:
+    return (f"mesh error estimate {_worst(out.errors)} exceeds the target error_tol = "
+            f"{tol:g}; the finer mesh it asks for ({n:,} unknowns) is beyond webfem's cap of "
+            f"{MAX_DOFS:,.0f}: the estimates state this answer's error")
+
+
+def _user_note(out: MeshError, tol: float) -> str:
+    return (f"user mesh: its error estimate {_worst(out.errors)} exceeds error_tol = {tol:g} "
+            "(a user mesh is not refined): refine the mesh or use webfem's graded one")
+
+
+def summary_keys(out: MeshError) -> dict:
+    """The summary keys of an estimate: ``error_<quantity>`` and ``error_basis``."""
+    return {**{f"error_{k}": v for k, v in out.errors.items()}, "error_basis": out.basis}
+

@@ -1,0 +1,107 @@
+"""What a user reads off a solved discrete state: the gaps, the friction and the contact share.
+
+One function, :func:`read_out`, used by the driver for the summary and by the error estimate
+(:mod:`webfem.models.mesh_error`) to compare the same quantities on two meshes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..case import Case
+from ..fem import forms
+from ..fem.scaling import FoilParameters
+from ..physics.friction import friction_for
+from .refine import minimum, wrap_samples
+
+__all__ = ["ReadOut", "read_out", "pressure_and_gradient", "READ_QUANTITIES"]
+
+#: The quantities whose error every result states (``error_<name>`` summary keys).
+READ_QUANTITIES = ("h_center", "h_min", "mu", "contact_share")
+
+
+@dataclass(frozen=True)
+class ReadOut:
+    """The gaps [m] at the wrap centre and edges, the smallest gap and where [m], the
+    wrap-averaged friction ``mu``, the regime shares, the share of the wrap load carried by
+    asperity contact, and the wrap quadrature (points, weights, gaps, pressure and its
+    gradient, the local friction) the summary and diagnostics keep."""
+
+    h_center: float
+    h_inlet: float
+    h_outlet: float
+    h_min: float
+    x_min: float
+    mu: float
+    shares: tuple[float, float, float]
+    contact_share: float
+    pts: np.ndarray
+    wts: np.ndarray
+    h: np.ndarray
+    p: np.ndarray
+    dpdx: np.ndarray
+
+    def value(self, name: str) -> float:
+        """One of :data:`READ_QUANTITIES` by name."""
+        return float(getattr(self, name))
+
+
+def pressure_and_gradient(case: Case, problem, u, X) -> tuple[np.ndarray, np.ndarray]:
+    """Absolute (width-averaged) film pressure [Pa] and its x-derivative [Pa/m] at scaled
+    points X inside cells (a central difference well inside the cell: the pressure is a
+    polynomial there)."""
+    delta = 1e-7
+    P = problem.pressure(u, np.concatenate([X, X - delta, X + delta]))
+    n = len(X)
+    dPdX = (P[2 * n:] - P[n:2 * n]) / (2.0 * delta)
+    return (case.air.ambient_pressure + P[:n] * case.p_bar,
+            dPdX * case.p_bar / case.x_scale)
+
+
+def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
+    """The quantities of a solved state ``u`` of ``problem`` (SI units)."""
+    Hs = case.h_scale
+    pts, wts = wrap_samples(problem.X, prm.beta)
+    h = problem.gap(u, prm, pts) * Hs
+    p, dpdx = pressure_and_gradient(case, problem, u, pts)
+    loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
+    mu = float(np.sum(loc["mu"] * wts) / prm.beta)
+    shares = tuple(float(np.sum(wts * (loc["regime"] == k)) / prm.beta) for k in range(3))
+    Pf = (p - case.air.ambient_pressure) / case.p_bar
+    Pc = prm.land * forms.contact_law(h / Hs, prm.as_form_args())[0]  # lands only
+    contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
+    Hmin, Xmin = minimum(problem, u, prm)
+    e = 0.5 * prm.beta
+    H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
+    return ReadOut(h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
+                   h_min=Hmin * Hs, x_min=Xmin * case.x_scale, mu=mu, shares=shares,
+                   contact_share=contact_share, pts=pts, wts=wts, h=h, p=p, dpdx=dpdx)
+
+
+#: mu's error is relative to mu, or to this fraction of mu_cc where mu is smaller (where
+#: nothing slides mu is about 0, and a relative error of a near-zero value means nothing).
+MU_SCALE = 0.1
+
+
+def error_scale(case: Case, name: str, value: float) -> float:
+    """What an error in quantity ``name`` at ``value`` is measured against: the gap itself
+    (relative errors), mu or :data:`MU_SCALE` mu_cc, and 1 for the contact share (a share
+    of the load: its error is absolute)."""
+    if name == "contact_share":
+        return 1.0
+    if name == "mu":
+        return max(abs(value), MU_SCALE * case.friction.mu_cc)
+    return abs(value)
+
+
+def errors_between(case: Case, answer: ReadOut, other: ReadOut) -> dict[str, float]:
+    """|answer - other| per :data:`READ_QUANTITIES`, each against :func:`error_scale` of the
+    answer's value."""
+    out = {}
+    for name in READ_QUANTITIES:
+        a = answer.value(name)
+        scale = error_scale(case, name, a)
+        out[name] = abs(a - other.value(name)) / scale if scale > 0 else float("inf")
+    return out
