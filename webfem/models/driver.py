@@ -26,8 +26,8 @@ from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES
-from ..physics.effects import idler_check, included
-from ..physics.friction import delta_T_from_mu, friction_for
+from ..physics.effects import included, traction_summary
+from ..physics.friction import friction_for
 from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Diagnostics, Fields, Result, Summary
@@ -268,9 +268,9 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
     Pf = (p - case.air.ambient_pressure) / case.p_bar
     Pc = prm.land * forms.contact_law(h / Hs, prm.as_form_args())[0]  # lands only
     contact_share = float(np.sum(Pc * wts) / max(np.sum((Pf + Pc) * wts), 1e-300))
-    # at the onset of slip the sliding speed is small: the asperities hold with the static
-    # mu_cc on the share of the wrap load they carry, the film with nothing
-    idler = idler_check(case, case.friction.mu_cc * contact_share)
+    # mu, delta_T and the idler keys; where nothing slides, the traction at the onset of
+    # slip (the film's own drag goes to mu_film)
+    traction = traction_summary(case, mu, contact_share)
     Hmin, Xmin = minimum(problem, u, prm)
     e = 0.5 * prm.beta
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
@@ -283,8 +283,7 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
         warnings.append(slip)
     summary = Summary(
         model=disc.name, h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
-        h_min=Hmin * Hs, x_min=Xmin * Xs, mu=mu,
-        delta_T=float(delta_T_from_mu(mu, case.tension_eff, case.B)),
+        h_min=Hmin * Hs, x_min=Xmin * Xs,
         regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
         eq21_valid=bool(eq21_valid(case.beta, case.lam)),
         converged=bool(info["converged"]), iterations=int(info["iterations"]),
@@ -295,7 +294,7 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver, notes) 
         method=options.method, mesh=disc.mesh_text(problem, options),
         warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
         solver_message=info.get("reason", ""), T_eff=case.tension_eff,
-        bending_stiffness_used=case.bending_used, effects=included(case), **idler,
+        bending_stiffness_used=case.bending_used, effects=included(case), **traction,
         **{"n_cells": len(problem.X) - 1, **extra})
     diagnostics = Diagnostics(
         method=options.method, history=tuple(info.get("history", [])),
