@@ -28,7 +28,9 @@ import dataclasses
 import numpy as np
 
 from ..case import Case
+from ..errors import NoAdmissibleSolution
 from ..physics import closed_form as cf
+from ..physics.contact import contact_pressure
 from ..physics.friction import friction_for
 from ..physics.validity import BETA_MAX
 from ..result import Result
@@ -62,6 +64,17 @@ def _friction(case: Case, h, w, resting=False, p=None, dpdx=None):
     return float(np.sum(friction_for(case, h, resting, p, dpdx)["mu"] * w))
 
 
+def _onset(case: Case, h, w) -> float:
+    """mu_cc times the share of T/R asperity contact carries on gaps ``h`` (weights ``w``
+    summing to 1): where nothing slides the headline mu is this onset traction
+    (:func:`webfem.physics.effects.traction_summary`), so its estimates compare it, not the
+    film's drag."""
+    web = case.web
+    pc = contact_pressure(h, web.modulus_thickness, case.sigma, web.thickness,
+                          case.friction.distribution)
+    return case.friction.mu_cc * float(np.sum(np.minimum(pc / case.p_bar, 1.0) * w))
+
+
 def _closed_estimate(case: Case, r: Result, quantity: str):
     if not r["eq21_valid"]:
         return None, (f"closed form rejected: outside Eq. 21's range (beta = {r['beta']:.3g}, "
@@ -78,7 +91,8 @@ def _closed_estimate(case: Case, r: Result, quantity: str):
         g, gw = np.polynomial.legendre.leggauss(200)
         s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
         hq = np.interp(s, x, h)
-        est = _relative(_friction(case, np.maximum(hq + shift, 0.0), 0.5 * gw), r["mu"])
+        traction = _friction if r["mu_film"] is None else _onset
+        est = _relative(traction(case, np.maximum(hq + shift, 0.0), 0.5 * gw), r["mu"])
     elif quantity == "h_min":   # Eq. 21 has no exit constriction: compare with its 0.716
         est = abs((r["h_min"] + shift) * 0.716 / r["h_min"] - 1.0)
     else:
@@ -95,8 +109,12 @@ def _fe1d_estimate(case: Case, r: Result, quantity: str):
         h = d.wrap_h
         # edge leakage lowers a flying film; a web resting on its asperities (h ~ h_c) stays
         lowered = np.maximum(h * (1.0 - LEAK_CENTER / lam), np.minimum(h, r["h_c"]))
-        est = _relative(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx),
-                        r["mu"])
+        if r["mu_film"] is None:
+            est = _relative(_friction(case, lowered, d.wrap_w, True, d.wrap_p, d.wrap_dpdx),
+                            r["mu"])
+        else:   # nothing slides: the onset traction moves with the contact the gap leaves
+            est = _relative(r["mu"] + _onset(case, lowered, d.wrap_w)
+                            - _onset(case, h, d.wrap_w), r["mu"])
     else:
         est = (LEAK_CENTER if quantity == "h_center" else LEAK_MIN) / lam
     est *= SAFETY
@@ -115,12 +133,16 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
                             raise_on_failure=raise_on_failure)
         return _answer(r, FE2D_ERROR, quantity, tol,
                        ["grooved roller: only fe2d solves the land and groove film"])
-    r = closed.solve_case(case, ClosedFormOptions())
+    r = closed.solve_case(case, ClosedFormOptions(), raise_on_failure=False)
+    no_answer = closed.no_answer(r)    # never returned: it is not an answer
     if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
+        if no_answer:
+            raise NoAdmissibleSolution(f"no admissible closed-form answer: {no_answer}")
         return _answer(r, None, quantity, tol,
                        [f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), "
                         "beyond the FE models; the air film is negligible: closed form"])
-    est, text = _closed_estimate(case, r, quantity)
+    est, text = (None, f"closed form has no answer: {no_answer}") if no_answer else \
+        _closed_estimate(case, r, quantity)
     why.append(text)
     if est is None or est > tol:
         r = fe1d.solve_case(case, fe_options(options, FE1DOptions),
