@@ -71,13 +71,37 @@ def test_h_c_below_zero_is_an_answer_while_the_film_flies():
 def test_mu_beyond_asperities_and_valley_air_is_refused():
     """T = 250 N/m at 20 m/s: h_c = 4e-6 ln(5000/4545) = 0.38 um rests the web far below its
     roughness, and the Couette shear eta U_s/(h_c + 2 a lambda) there lifts mu to 0.417,
-    above mu_cc + 2 eta U_s / (sigma T/R) = 0.3 + 2 * 1.81e-5 * 20 / (4e-6 * 4545) = 0.340."""
+    above mu_cc + c eta U_s / (sigma T/R) = 0.3 + 2.029 * 1.81e-5 * 20 / (4e-6 * 4545) =
+    0.340, with c = 0.5 ln(1 + 4e-6 / (2 * 65e-9)) + 0.3 = 2.029 bounding the shear of the
+    air between the asperities (its peak, by quadrature: 1.55 eta U_s / sigma)."""
     case = BASE.updated({"web.tension": 250.0})
-    assert closed.mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055) == pytest.approx(
-        0.33982, rel=1e-4)
+    assert closed.mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9) == pytest.approx(
+        0.3 + 2.0293 * 1.81e-5 * 20.0 / (4e-6 * 250.0 / 0.055), rel=1e-4)
     assert code(case) == "mu"
     with pytest.raises(NoAdmissibleSolution, match=r"mu = 0\.417 is above .* mu <= 0\.34;"):
         closed.solve(case)
+
+
+@pytest.mark.parametrize("ratio", [3.0, 30.0, 300.0, 1e4])
+def test_valley_shear_bound_is_above_the_shear_of_the_air_between_asperities(ratio):
+    """tau(h) = E[eta U_s / ((h - z) + 2 a lambda); z < h] over the Laplace heights
+    exp(-|z|/sigma)/(2 sigma) (physics.md), maximised over h by quadrature, lies below
+    valley_shear_bound and within 0.6 of it (sigma / (2 a lambda) = ``ratio``)."""
+    from scipy.integrate import quad
+    from scipy.optimize import minimize_scalar
+
+    from webfem.physics.friction import valley_shear_bound
+
+    cut = 1.0 / ratio    # in units of sigma
+
+    def tau(h):
+        f = lambda z: 0.5 * np.exp(-abs(z)) / ((h - z) + cut)   # noqa: E731
+        out = quad(f, -60.0, min(h, 0.0), limit=400)[0]
+        return out + (quad(f, 0.0, h, limit=400, points=[h * (1 - 1e-3)])[0] if h > 0 else 0)
+
+    peak = -minimize_scalar(lambda h: -tau(h), bounds=(0.0, 3.0), method="bounded").fun
+    bound = float(valley_shear_bound(ratio * 130e-9, 65e-9))
+    assert peak < bound < peak + 0.6
 
 
 def test_mu_a_little_above_mu_cc_is_an_answer():

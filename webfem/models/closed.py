@@ -25,13 +25,14 @@ h(x) from h_inlet down to h_outlet, in this order:
     over the whole wrap h_c <= 0 does not matter (the film carries T/R) and the answer stands;
 ``mu``
     the wrap-averaged mu is not finite, or above mu_cc by more than the air between the
-    asperities can add (:func:`mu_bound`: mu_cc + 2 eta U_s / (sigma T_eff/R)). The
-    asperities' friction is at most mu_cc; the air in the valleys between them shears at
-    most about 1.5 eta U_s / sigma (physics.md). Only the Couette shear eta U_s / (h + 2 a
-    lambda) at a resting gap h_c far below sigma goes further, where it no longer holds (a
-    contact law near its limit: T/R close to E_b sigma / (2 t)). A mu a little above mu_cc
-    is an answer: boundary friction near mu_cc plus the real drag of the air (the base web
-    at T = 120 N/m and 9 m/s: 0.301).
+    asperities can add (:func:`mu_bound`: mu_cc + c eta U_s / (sigma T_eff/R), c = 2.03
+    for the base web). The asperities' friction is at most mu_cc; the air in the valleys
+    between them shears at most about 1.55 eta U_s / sigma there
+    (:func:`~webfem.physics.friction.valley_shear_bound`; physics.md). Only the Couette
+    shear eta U_s / (h + 2 a lambda) at a resting gap h_c far below sigma goes further,
+    where it no longer holds (a contact law near its limit: T/R close to E_b sigma / (2 t)).
+    A mu a little above mu_cc is an answer: boundary friction near mu_cc plus the real drag
+    of the air (the base web at T = 120 N/m and 9 m/s: 0.301).
 
 A partly landed wrap is an answer (the paper's): where Eq. 21 puts h <= 0 the web rests on
 its asperities, boundary lubrication with mu = (2/pi) mu_cc atan(U_s/C). So the base case
@@ -63,7 +64,8 @@ from ..physics import closed_form as cf
 from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
-                                wrap_average_linear_gap, wrap_average_loads)
+                                valley_shear_bound, wrap_average_linear_gap,
+                                wrap_average_loads)
 from ..errors import NoAdmissibleSolution
 from ..physics.validity import (THIN_FILM_RATIO, contact_overload, grooves_refused,
                                 slip_warning, thin_film_check, thin_film_message)
@@ -79,21 +81,21 @@ N_FIELD_POINTS = 201
 #: Why the closed form has no answer, by the code :func:`evaluate` returns as ``no_answer``
 #: (0: an answer); the module text says what each means.
 NO_ANSWER = ("", "thin-film", "gap", "landed", "contact", "mu")
-#: The most shear stress the air between the asperities can add where the web rests on
-#: them, in units of eta U_s / sigma: about 1.5 at h = 0 (physics.md, "Air through the
-#: roughness") and less on either side, so 2 bounds it. The Couette shear eta U_s/(h + 2 a
-#: lambda) the closed form applies at a resting gap h_c << sigma exceeds it: the symptom of a
-#: contact law near its limit (T/R close to E_b sigma/(2t)), not a traction.
-FILM_SHEAR_NEAR_CONTACT = 2.0
-
-
-def mu_bound(mu_cc, eta, U_s, sigma, p_bar):
+def mu_bound(mu_cc, eta, U_s, sigma, p_bar, mean_free_path):
     """The largest traction coefficient the closed form may state: the asperities' mu_cc
-    plus the most the air between them can add, FILM_SHEAR_NEAR_CONTACT eta U_s / sigma
-    over p_bar = T_eff/R. A film flying over the whole wrap (h > 3 sigma) stays below it
-    by itself (its shear is eta U_s / h < eta U_s / (3 sigma)), so this bounds the traction
-    where asperities touch and lets any flying film through, whatever mu_cc."""
-    return mu_cc + FILM_SHEAR_NEAR_CONTACT * eta * U_s / (sigma * p_bar)
+    plus the most the air between them can add where the web rests on them,
+    :func:`~webfem.physics.friction.valley_shear_bound` eta U_s / sigma (about 2 eta U_s /
+    sigma for the base web), over p_bar = T_eff/R. Only the Couette shear eta U_s / (h + 2 a
+    lambda) at a resting gap h_c far below sigma goes further: the symptom of a contact law
+    near its limit (T/R close to E_b sigma/(2t)), not a traction. A film flying over the
+    whole wrap (h > 3 sigma) stays below the bound by itself (eta U_s / h < eta U_s /
+    (3 sigma)), whatever mu_cc.
+
+    >>> round(float(mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9)), 4)
+    0.3404
+    """
+    return mu_cc + (valley_shear_bound(sigma, mean_free_path) * eta * U_s
+                    / (sigma * p_bar))
 
 
 def case_arrays(cases) -> dict[str, np.ndarray]:
@@ -107,12 +109,13 @@ def case_arrays(cases) -> dict[str, np.ndarray]:
         "C": lambda c: c.friction.speed_constant,
         "slip_length": lambda c: (2.0 * SLIP_COEFFICIENT * c.air.mean_free_path
                                   if c.slip_model == "first-order" else 0.0),
+        "mean_free_path": lambda c: c.air.mean_free_path,
     }
     return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
 
 
 def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper",
-             distribution="exponential", slip_length=0.0):
+             distribution="exponential", slip_length=0.0, mean_free_path=65e-9):
     """Closed-form gaps and traction at many operating points at once (arrays broadcast).
 
     Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
@@ -125,7 +128,8 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     then reports the onset traction, :func:`webfem.physics.effects.traction_summary`).
     ``no_answer`` is 0 where the closed form has an answer, else the index into
     :data:`NO_ANSWER` of why not (see the module text); the numbers are kept there for
-    inspection, never to be read as an answer.
+    inspection, never to be read as an answer. ``mean_free_path`` [m] (at p_a) sets the
+    bound on mu (:func:`mu_bound`).
     """
     U = np.asarray(U_r, float) + U_w
     U_s = np.abs(np.asarray(U_r, float) - U_w)
@@ -146,7 +150,7 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
     h_c = contact_gap(T / R, E_b, sigma, t, distribution)
     code = _no_answer(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
-                      mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R))
+                      mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path))
     return {"no_answer": code,
         "contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t, distribution),
         "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
@@ -228,10 +232,12 @@ def _no_answer_reason(code: int, case: Case, s: dict) -> str:
         return ("the wrap-averaged mu is not finite: the Eq. 21 gap closes where contact "
                 "cannot carry T/R; " + (contact_overload(case) or "use fe1d or fe2d"))
     mu_cc = case.friction.mu_cc
-    top = mu_bound(mu_cc, case.air.viscosity, case.U_slide, case.sigma, case.p_bar)
+    top = mu_bound(mu_cc, case.air.viscosity, case.U_slide, case.sigma, case.p_bar,
+                   case.air.mean_free_path)
+    peak = valley_shear_bound(case.sigma, case.air.mean_free_path)
     return (f"the wrap-averaged mu = {s['mu']:.3g} is above what the asperities (friction."
             f"mu_cc = {mu_cc:g}) and the air between them (at most about "
-            f"{FILM_SHEAR_NEAR_CONTACT:g} eta U_s / sigma) can carry: valid mu <= {top:.3g}; "
+            f"{peak:.2g} eta U_s / sigma) can carry: valid mu <= {top:.3g}; "
             f"the Couette shear over Eq. 21's resting gap h_c = {s['h_c']:.3g} m, well below "
             f"the roughness sigma = {case.sigma:.3g} m (U_s = {case.U_slide:g} m/s), is the "
             "contact law near its limit, not a traction: lower web.tension or raise "
