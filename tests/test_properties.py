@@ -23,12 +23,14 @@ points = st.fixed_dictionaries({
 def test_closed_form_gap_grows_with_speed_and_falls_with_tension(values, factor):
     case = Case().updated(values)
     assume(case.lam > 7 and case.beta > 6)   # Eq. 21's stated range
-    base = closed.solve(case)
     faster = case.updated({"roller.speed": case.roller.speed * factor})
     tighter = case.updated({"web.tension": case.web.tension * factor})
+    # Eq. 21's gaps, also where the closed form has no answer (up to 360 N/m on a 35 mm
+    # roller: more than contact carries at h = 0): solve_many keeps them, flagged
+    base, fast, tight = closed.solve_many([case, faster, tighter])
     for key in ("h_inlet", "h_center", "h_outlet"):
-        assert closed.solve(faster)[key] >= base[key]
-        assert closed.solve(tighter)[key] <= base[key]
+        assert fast[key] >= base[key]
+        assert tight[key] <= base[key]
 
 
 @settings(max_examples=300, deadline=None)

@@ -33,8 +33,11 @@ def describe(result) -> str:
         f"regime {s.regime} (wrap shares: boundary {s.share_boundary:.2f}, "
         f"mixed {s.share_mixed:.2f}, fluid {s.share_fluid:.2f})",
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
-        + (" (nothing slides, U_s = 0: only the film's pressure-driven shear)"
-           if s.U_slide == 0.0 else ""),
+        + (": the traction available at the onset of slip (nothing slides, U_s = 0; "
+           "mu_onset = mu_cc x contact share)" if s.mu_film is not None else ""),
+        *([f"  the film's own drag at these speeds (its pressure-driven shear): mu_film = "
+           f"{s.mu_film:.4f}, delta_T_film = {s.delta_T_film:.3f} N/m"]
+          if s.mu_film is not None else []),
         f"  converged = {s.converged}, iterations = {s.iterations}, "
         f"n_dofs = {s.n_dofs}, time = {s.solve_time_s * 1e3:.3f} ms",
     ]

@@ -11,13 +11,16 @@ h_center     gap at the wrap centre x = 0 [m]
 h_inlet      gap at the inlet edge x = -RB/2 [m]
 h_outlet     gap at the outlet edge x = +RB/2 [m]
 h_min        smallest gap anywhere in the solved domain [m]
-mu           wrap-averaged friction coefficient [-]
-delta_T      tension increase the roller carries before slip, Eq. 31 [N/m]
+mu           wrap-averaged friction coefficient [-]; where nothing slides (U_s = 0, an
+             idler) the traction available at the onset of slip, mu_onset
+delta_T      tension increase the roller carries before slip, Eq. 31 [N/m]; where nothing
+             slides delta_T_available = T_eff (exp(mu_onset B) - 1)
 regime       lubrication regime covering most of the wrap: boundary, mixed or fluid
 lambda       width parameter L/(2 R eps^(1/3))
 beta         wrap parameter B/eps^(1/3)
 eq21_valid   True inside Eq. 21's stated range (beta > 6 and lambda > 7)
-converged    True when the solver met its tolerance (always True for the closed form)
+converged    True when the solver met its tolerance and the answer is admissible (the
+             closed form: False where it has no answer, the reason in ``solver_message``)
 iterations   nonlinear iterations (0 for the closed form)
 n_dofs       unknowns of the discrete problem (0 for the closed form)
 solve_time_s wall time of the solve [s]
@@ -158,10 +161,18 @@ class Summary(_ReadOnlyMapping):
     #: Idler slip check (when the case states a drag torque or a line acceleration):
     #: tension difference needed and available [N/m], their ratio, and the friction
     #: coefficient assumed at the onset of slip.
+    #: Where nothing slides (U_s = 0) ``mu_onset`` and ``delta_T_available`` are given even
+    #: without an idler load: they are then ``mu`` and ``delta_T``.
     delta_T_required: float | None = None
     delta_T_available: float | None = None
     slip_margin: float | None = None
     mu_onset: float | None = None
+    #: Where nothing slides (U_s = 0): the film's own traction at the stated speeds, its
+    #: pressure-driven drag -(h/2) dp/dx averaged over the wrap (tiny, of either sign) and
+    #: the belt formula's delta_T for it [N/m]; None where something slides (then ``mu`` and
+    #: ``delta_T`` are that traction).
+    mu_film: float | None = None
+    delta_T_film: float | None = None
     #: FE models: position of the minimum gap [m], share of the wrap load carried by
     #: asperity contact, coupling method, mesh description, cells, refinement rounds and
     #: the solver's closing message.

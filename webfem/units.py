@@ -228,8 +228,8 @@ ROLES = {
     # summary keys (webfem.result.Summary)
     **dict.fromkeys(("h_center", "h_inlet", "h_outlet", "h_min", "h_c", "sigma"), "thin"),
     "x_min": "position",
-    **dict.fromkeys(("delta_T", "T_eff", "delta_T_required", "delta_T_available"),
-                    "tension"),
+    **dict.fromkeys(("delta_T", "T_eff", "delta_T_required", "delta_T_available",
+                     "delta_T_film"), "tension"),
     "U": "speed", "U_slide": "speed", "bending_stiffness_used": "torque",
     # case keys
     **dict.fromkeys(("roller.radius", "roller.diameter", "web.width"), "length"),

@@ -78,7 +78,7 @@ def run(args) -> int:
             print(f"wrote {path}")
     failed = [r for r in rows if not r["converged"]]
     if failed:
-        print(f"webfem: {len(failed)} of {len(rows)} points did not converge (see the CSV)",
-              file=sys.stderr)
+        print(f"webfem: {len(failed)} of {len(rows)} points have no converged, admissible "
+              "answer (see converged and solver_message in the CSV)", file=sys.stderr)
         return 3
     return 0

@@ -46,8 +46,10 @@ SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
 #: Summary key -> (unit, meaning) for the summary table in SI (gaps in um, x_min in mm); in
 #: other units a key of :data:`webfem.units.ROLES` shows its display unit.
 SUMMARY_UNITS = {
-    "mu": ("-", "wrap-averaged friction coefficient"),
+    "mu": ("-", "wrap-averaged friction coefficient (nothing sliding: at the onset of slip)"),
     "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
+    "mu_film": ("-", "nothing sliding: the film's own drag at these speeds"),
+    "delta_T_film": ("N/m", "nothing sliding: the belt formula's delta_T for mu_film"),
     "regime": ("", "lubrication regime over most of the wrap"),
     "h_center": ("um", "gap at the wrap centre"), "h_inlet": ("um", "gap at the inlet edge"),
     "h_outlet": ("um", "gap at the outlet edge"), "h_min": ("um", "smallest gap"),
@@ -66,6 +68,7 @@ SUMMARY_UNITS = {
     "slip_margin": ("-", "idler: available / required tension difference"),
     "delta_T_required": ("N/m", "idler: tension difference needed"),
     "delta_T_available": ("N/m", "idler: tension difference available"),
+    "mu_onset": ("-", "traction at the onset of slip: mu_cc x contact share"),
 }
 
 _STYLE = """

@@ -30,7 +30,6 @@ from ..errors import NoAdmissibleSolution
 from ..physics.validity import BETA_MAX
 from ..result import Result
 from . import closed, fe1d, fe2d
-from .model_error import closed_form_errors
 from .options import AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, fe_options
 from .readout import READ_QUANTITIES
 
@@ -62,12 +61,6 @@ def _verdict(name: str, errors: dict, quantities, tol: float) -> tuple[bool, str
                 f"{'<=' if ok else '>'} {tol:g}")
 
 
-def _with_errors(r: Result, errors: dict, basis: str) -> Result:
-    summary = r.summary.replace(**{f"error_{q}": v for q, v in errors.items()},
-                                error_basis=basis)
-    return dataclasses.replace(r, summary=summary)
-
-
 def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = None,
                raise_on_failure: bool = True) -> Result:
     """Solve with the cheapest model whose stated errors meet ``options.tol`` in the
@@ -82,11 +75,10 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
     why = []
     if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
         r = _closed(case)
-        if not r.summary.converged:
+        if closed.no_answer(r):
             raise NoAdmissibleSolution(
                 f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), beyond "
-                f"the FE models, and the closed form has no answer: "
-                f"{r.summary.solver_message}")
+                f"the FE models, and the closed form has no answer: {closed.no_answer(r)}")
         return _answer(r, quantities, tol,
                        [f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), "
                         "beyond the FE models; the air film is negligible: closed form"])
@@ -107,25 +99,16 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
 
 
 def _closed(case: Case) -> Result:
-    """The closed form's result with its stated errors (an unanswered point as a result with
-    ``converged = False``)."""
-    try:
-        r = closed.solve_case(case, ClosedFormOptions())
-    except NoAdmissibleSolution as err:
-        if getattr(err, "result", None) is None:
-            raise
-        return err.result
-    if r.summary.get("error_h_center") is None and r.summary.converged:
-        r = _with_errors(r, closed_form_errors(case, r.summary, r.fields),
-                         "model: Eq. 21's fit against the wide-web gap 0.643 R eps^(2/3) "
-                         "with 1.48/lambda edge leakage (doubled)")
-    return r
+    """The closed form's result with its stated errors; a point where it has no answer as
+    a result with ``converged = False`` and the reason (:func:`closed.no_answer`), never
+    returned as an answer."""
+    return closed.solve_case(case, ClosedFormOptions(), raise_on_failure=False)
 
 
 def _closed_verdict(r: Result, quantities, tol) -> tuple[bool, str]:
     s = r.summary
-    if not s.converged:
-        return False, f"closed form: no answer ({s.solver_message})"
+    if closed.no_answer(r):
+        return False, f"closed form: no answer ({closed.no_answer(r)})"
     if not s.eq21_valid:
         return False, (f"closed form rejected: outside Eq. 21's range (beta = {s.beta:.3g}, "
                        f"lambda = {s.lambda_:.3g})")

@@ -4,6 +4,47 @@ The cheapest model in webfem (about a microsecond per operating point). Because 
 gap is linear along the wrap, the wrap-averaged friction is integrated exactly
 (:func:`webfem.physics.friction.wrap_average_linear_gap`), not by quadrature.
 
+Where it has no answer
+----------------------
+Eq. 21 is a fit with a contact and friction model beside it; some operating points give
+numbers that are not an answer. :func:`evaluate` marks them (``no_answer``, a code into
+:data:`NO_ANSWER`, 0 where there is an answer), judged on the unclamped Eq. 21 gap
+h(x) from h_inlet down to h_outlet, in this order:
+
+``thin-film``
+    the film scale R eps^(2/3) is above R/100: Reynolds' thin-film equation does not hold
+    (:func:`webfem.physics.validity.thin_film_check`);
+``gap``
+    a gap the answer states, Eq. 21's h_inlet or the contact gap h_c where the web rests on
+    its asperities, is above R/100 (e.g. asperities a metre tall);
+``landed``
+    Eq. 21's h <= 0 over the whole wrap, from edge to edge: no film is left to speak of;
+``contact``
+    h_c <= 0 (T_eff/R above what asperity contact carries at h = 0) where Eq. 21 lands the
+    web (h <= 0 on part of the wrap): nothing holds the web up there. With the film flying
+    over the whole wrap h_c <= 0 does not matter (the film carries T/R) and the answer stands;
+``mu``
+    the wrap-averaged mu is not finite, or above mu_cc by more than the air between the
+    asperities can add (:func:`mu_bound`: mu_cc + c eta U_s / (sigma T_eff/R), c = 2.03
+    for the base web). The asperities' friction is at most mu_cc; the air in the valleys
+    between them shears at most about 1.55 eta U_s / sigma there
+    (:func:`~webfem.physics.friction.valley_shear_bound`; physics.md). Only the Couette
+    shear eta U_s / (h + 2 a lambda) at a resting gap h_c far below sigma goes further,
+    where it no longer holds (a contact law near its limit: T/R close to E_b sigma / (2 t)).
+    A mu a little above mu_cc is an answer: boundary friction near mu_cc plus the real drag
+    of the air (the base web at T = 120 N/m and 9 m/s: 0.301).
+
+A partly landed wrap is an answer (the paper's): where Eq. 21 puts h <= 0 the web rests on
+its asperities, boundary lubrication with mu = (2/pi) mu_cc atan(U_s/C). So the base case
+swept down to 0.5 m/s keeps its boundary-lubrication mu (0.17 there) though Eq. 21 lands all
+but the first 0.2 % of the wrap.
+
+Where there is no answer, :func:`solve_case` raises
+:class:`~webfem.errors.NoAdmissibleSolution` (exit 2 on the command line) naming the reason,
+or with ``raise_on_failure=False`` returns the result with ``converged = False``, the reason
+in ``solver_message`` and in ``warnings``; :func:`solve_many` (sweeps) returns every point
+that way, as sweeps keep any point no model can answer. :func:`no_answer` reads a result.
+
 Examples
 --------
 >>> from webfem import Case
@@ -21,20 +62,41 @@ import numpy as np
 from ..case import Case
 from ..physics import closed_form as cf
 from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
-from ..physics.effects import CLOSED_FORM_CARRIES, idler_check, included, left_out
+from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
-                                wrap_average_linear_gap, wrap_average_loads)
+                                valley_shear_bound, wrap_average_linear_gap,
+                                wrap_average_loads)
 from ..errors import NoAdmissibleSolution
-from ..physics.validity import (contact_overload, grooves_refused, slip_warning,
-                                thin_film_check)
+from ..physics.validity import (THIN_FILM_RATIO, contact_overload, grooves_refused,
+                                slip_warning, thin_film_check, thin_film_message)
 from ..result import Diagnostics, Fields, Result, Summary
+from .model_error import closed_form_errors
 from .options import ClosedFormOptions
 
-__all__ = ["evaluate", "case_arrays", "solve", "solve_case", "solve_many", "NAME"]
+__all__ = ["evaluate", "case_arrays", "solve", "solve_case", "solve_many", "no_answer",
+           "NO_ANSWER", "NAME"]
 
 NAME = "closed-form"
 #: Points along the wrap in the fields of a single solve (for charts and VTU).
 N_FIELD_POINTS = 201
+#: Why the closed form has no answer, by the code :func:`evaluate` returns as ``no_answer``
+#: (0: an answer); the module text says what each means.
+NO_ANSWER = ("", "thin-film", "gap", "landed", "contact", "mu")
+def mu_bound(mu_cc, eta, U_s, sigma, p_bar, mean_free_path):
+    """The largest traction coefficient the closed form may state: the asperities' mu_cc
+    plus the most the air between them can add where the web rests on them,
+    :func:`~webfem.physics.friction.valley_shear_bound` eta U_s / sigma (about 2 eta U_s /
+    sigma for the base web), over p_bar = T_eff/R. Only the Couette shear eta U_s / (h + 2 a
+    lambda) at a resting gap h_c far below sigma goes further: the symptom of a contact law
+    near its limit (T/R close to E_b sigma/(2t)), not a traction. A film flying over the
+    whole wrap (h > 3 sigma) stays below the bound by itself (eta U_s / h < eta U_s /
+    (3 sigma)), whatever mu_cc.
+
+    >>> round(float(mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9)), 4)
+    0.3404
+    """
+    return mu_cc + (valley_shear_bound(sigma, mean_free_path) * eta * U_s
+                    / (sigma * p_bar))
 
 
 def case_arrays(cases) -> dict[str, np.ndarray]:
@@ -48,12 +110,13 @@ def case_arrays(cases) -> dict[str, np.ndarray]:
         "C": lambda c: c.friction.speed_constant,
         "slip_length": lambda c: (2.0 * SLIP_COEFFICIENT * c.air.mean_free_path
                                   if c.slip_model == "first-order" else 0.0),
+        "mean_free_path": lambda c: c.air.mean_free_path,
     }
     return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
 
 
 def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper",
-             distribution="exponential", slip_length=0.0):
+             distribution="exponential", slip_length=0.0, mean_free_path=65e-9):
     """Closed-form gaps and traction at many operating points at once (arrays broadcast).
 
     Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
@@ -61,7 +124,13 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     ``eq21_valid``, ``h_c`` [m], the regime shares and ``regime_code`` (index into
     :data:`webfem.physics.contact.REGIMES`). ``T`` is the effective tension T_eff;
     ``variant="loads"`` averages the friction from the loads (with the slip length 2 a lambda
-    in the film's shear) numerically, the others exactly.
+    in the film's shear) numerically, the others exactly. ``mu`` and ``delta_T`` are the
+    traction at the stated speeds (the film's drag alone where nothing slides; the summary
+    then reports the onset traction, :func:`webfem.physics.effects.traction_summary`).
+    ``no_answer`` is 0 where the closed form has an answer, else the index into
+    :data:`NO_ANSWER` of why not (see the module text); the numbers are kept there for
+    inspection, never to be read as an answer. ``mean_free_path`` [m] (at p_a) sets the
+    bound on mu (:func:`mu_bound`).
     """
     U = np.asarray(U_r, float) + U_w
     U_s = np.abs(np.asarray(U_r, float) - U_w)
@@ -81,8 +150,10 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
                                       distribution=distribution)
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
     h_c = contact_gap(T / R, E_b, sigma, t, distribution)
-    return {"contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t,
-                                            distribution),
+    code = _no_answer(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
+                      mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path))
+    return {"no_answer": code,
+        "contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t, distribution),
         "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
         "h_outlet": np.maximum(h_out, 0.0), "h_min": np.maximum(h_out, 0.0),
         "mu": avg["mu"], "delta_T": delta_T_from_mu(avg["mu"], T, B),
@@ -91,6 +162,96 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
         "share_boundary": avg["share_boundary"], "share_mixed": avg["share_mixed"],
         "share_fluid": avg["share_fluid"], "regime_code": np.argmax(shares, axis=0),
     }
+
+
+def _no_answer(*, R, eps, h_in, h_out, h_c, mu, mu_max):
+    """The :data:`NO_ANSWER` code of each point (0: an answer), the first reason that
+    applies in the order of the module text; ``h_in`` and ``h_out`` are the unclamped Eq. 21
+    gaps at the wrap edges (h_out <= h_in: permeation only lowers the gap)."""
+    limit = THIN_FILM_RATIO * np.asarray(R, float)
+    mu = np.asarray(mu, float)
+    with np.errstate(invalid="ignore"):
+        reasons = [
+            np.asarray(R, float) * np.cbrt(eps) ** 2 > limit,              # thin-film
+            np.maximum(h_in, h_c) > limit,                                 # gap
+            h_in <= 0.0,                                                   # landed
+            (h_c <= 0.0) & (h_out <= 0.0),                                 # contact
+            ~np.isfinite(mu) | (mu > mu_max),                             # mu
+        ]
+    return np.select(reasons, list(range(1, len(reasons) + 1)), 0)
+
+
+def no_answer(result) -> str | None:
+    """Why the closed form has no answer at ``result``'s operating point (its
+    ``solver_message``), or None when it has one. A result of :func:`solve_many`, or of
+    :func:`solve_case` with ``raise_on_failure=False``, may carry no answer: ``converged``
+    is then False. A model choosing among others (auto) tests this before using it.
+
+    >>> from webfem import Case
+    >>> no_answer(solve(Case())) is None
+    True
+    >>> r = solve_many([Case().updated({"web.tension": 500.0})])[0]
+    >>> r["converged"], no_answer(r)[:34]
+    (False, 'h_c = -2.39e-06 m <= 0 where Eq. 2')
+    """
+    if result["converged"]:
+        return None
+    return result["solver_message"] or "no closed-form answer"
+
+
+def _no_answer_reason(code: int, case: Case, s: dict) -> str:
+    """The message of :data:`NO_ANSWER` code ``code`` for ``case`` (summary values ``s``):
+    what is wrong, the parameter and its value against its valid range, and what helps."""
+    R = case.roller.radius
+    limit = THIN_FILM_RATIO * R
+    reason = NO_ANSWER[code]
+    if reason == "thin-film":
+        return thin_film_message(case) or "the film is thicker than R/100"
+    if reason == "gap":
+        if s["h_c"] > limit:
+            w, f = case.web, case.friction
+            keys = (f"web.roughness = {w.roughness:g} m"
+                    + (f", roller.roughness = {case.roller.roughness:g} m, friction.roughness"
+                       " = composite" if f.roughness == "composite" else ""))
+            return (f"the contact gap h_c = {s['h_c']:.3g} m, where the asperities alone "
+                    f"carry T/R, is more than R/100 = {limit:.2g} m (roller.radius = {R:g} "
+                    f"m; valid: h_c < R/100): the roughness sigma = {case.sigma:.3g} m "
+                    f"({keys}) is far too coarse for a thin film on this roller; lower it")
+        return (f"Eq. 21's inlet gap h_inlet = {s['h_inlet']:.3g} m is more than R/100 = "
+                f"{limit:.2g} m (roller.radius = {R:g} m; lambda = {s['lambda']:.3g}, "
+                "web.width is narrow against the film's entry length): the thin-film model "
+                "does not hold; raise web.tension or lower the speeds")
+    if reason == "landed":
+        return (f"Eq. 21's gap is <= 0 over the whole wrap (h_inlet = {s['h_inlet']:.3g} m "
+                f"at U = {case.U:g} m/s): no film is left to describe; raise the speeds")
+    share = _landed_share(case, s)
+    if reason == "contact":
+        return (f"h_c = {s['h_c']:.3g} m <= 0 where Eq. 21 lands the web (h <= 0 on "
+                f"{100 * share:.3g} % of the wrap): "
+                + (contact_overload(case) or "asperity contact cannot carry T/R at h = 0"))
+    if not np.isfinite(s["mu"]):
+        return ("the wrap-averaged mu is not finite: the Eq. 21 gap closes where contact "
+                "cannot carry T/R; " + (contact_overload(case) or "use fe1d or fe2d"))
+    mu_cc = case.friction.mu_cc
+    top = mu_bound(mu_cc, case.air.viscosity, case.U_slide, case.sigma, case.p_bar,
+                   case.air.mean_free_path)
+    peak = valley_shear_bound(case.sigma, case.air.mean_free_path)
+    return (f"the wrap-averaged mu = {s['mu']:.3g} is above what the asperities (friction."
+            f"mu_cc = {mu_cc:g}) and the air between them (at most about "
+            f"{peak:.2g} eta U_s / sigma) can carry: valid mu <= {top:.3g}; "
+            f"the Couette shear over Eq. 21's resting gap h_c = {s['h_c']:.3g} m, well below "
+            f"the roughness sigma = {case.sigma:.3g} m (U_s = {case.U_slide:g} m/s), is the "
+            "contact law near its limit, not a traction: lower web.tension or raise "
+            "web.modulus_thickness or web.roughness")
+
+
+def _landed_share(case: Case, s: dict) -> float:
+    """Share of the wrap where the unclamped Eq. 21 gap is <= 0."""
+    h_in = s["h_inlet"]
+    drop = 2.0 * case.roller.radius * s["kappa"]
+    if drop <= 0.0:
+        return float(h_in <= 0.0)
+    return float(np.clip((drop - h_in) / drop, 0.0, 1.0))
 
 
 def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
@@ -133,9 +294,11 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     if not summary["eq21_valid"]:
         out.append(f"outside Eq. 21's stated range: beta = {summary['beta']:.3g} (needs > 6), "
                    f"lambda = {summary['lambda']:.3g} (needs > 7); use an FE model")
-    if summary["h_c"] <= 0.0:
+    if summary["h_c"] <= 0.0 and summary["h_outlet"] > 0.0:
+        # the film flies over the whole wrap and carries T/R: the answer stands
         out.append(f"h_c = {summary['h_c']:.3g} m <= 0: asperity contact at h = 0 cannot "
-                   f"carry T/R = {case.p_bar:.4g} Pa; mu may be infinite")
+                   f"carry T/R = {case.p_bar:.4g} Pa; the film carries it here, but a web "
+                   "that lands has no equilibrium")
     if summary["h_outlet"] <= 0.0:
         out.append("Eq. 21 gap reaches 0 in the wrap: the web lands on the roller there "
                    "(clamped h <= 0 -> 0)")
@@ -146,37 +309,58 @@ def _warnings(case: Case, summary: dict) -> list[str]:
 
 
 def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Summary:
-    """The :class:`~webfem.result.Summary` of point ``i`` of :func:`evaluate`'s output."""
+    """The :class:`~webfem.result.Summary` of point ``i`` of :func:`evaluate`'s output;
+    where the closed form has no answer, ``converged`` is False and ``solver_message`` and
+    the last of the ``warnings`` say why (see the module text)."""
     s = {key: (np.asarray(v)[i] if np.ndim(v) else v) for key, v in values.items()}
     s = {k: (v.item() if hasattr(v, "item") else v) for k, v in s.items()}
-    # a landed web whose contact cannot carry T/R has no finite mu: not an answer
-    finite = bool(np.isfinite(s["mu"]))
-    s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=finite,
+    code = int(s.pop("no_answer"))
+    # mu and delta_T as the belt formula would measure them (the onset traction where
+    # nothing slides), with the idler check
+    s.update(traction_summary(case, s["mu"], s["contact_share"]))
+    s.update(model=NAME, regime=REGIMES[int(s.pop("regime_code"))], converged=code == 0,
              iterations=0, n_dofs=0, residual=0.0, solve_time_s=elapsed,
              sigma=case.sigma, U=case.U, U_slide=case.U_slide, T_eff=case.tension_eff,
              bending_stiffness_used=0.0,
-             effects=tuple(e for e in included(case) if e in CLOSED_FORM_CARRIES),
-             **idler_check(case, case.friction.mu_cc * s["contact_share"]))
+             effects=tuple(e for e in included(case) if e in CLOSED_FORM_CARRIES))
     s["warnings"] = _warnings(case, s)
-    if not finite:
-        s["solver_message"] = ("no finite mu: the Eq. 21 gap lands the web and "
-                               + (contact_overload(case) or "the contact law fails"))
+    if code:
+        # the reason reads from the traction at the stated speeds, which it judged
+        s["solver_message"] = _no_answer_reason(
+            code, case, {**s, "mu": s["mu_film"] if s["mu_film"] is not None else s["mu"]})
+        s["warnings"].append("no closed-form answer: " + s["solver_message"])
+    else:
+        s.update({f"error_{q}": e for q, e in closed_form_errors(case, s).items()},
+                 error_basis=ERROR_BASIS)
     return Summary.from_mapping(s)
 
 
-def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None = None
-               ) -> Result:
+#: How the closed form's stated errors are obtained (:mod:`webfem.models.model_error`).
+ERROR_BASIS = ("model: Eq. 21's fit against the wide-web gap 0.643 R eps^(2/3) with "
+               "1.48/lambda edge leakage, Eshel-Elrod's exit constriction and the pressure-"
+               "driven shear it leaves out (doubled); no mesh")
+
+
+def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None = None,
+               raise_on_failure: bool = True) -> Result:
     """Closed-form solution of one case, with fields along the wrap for charts and VTU
     (``options.n_points`` points). ``initial`` is accepted for the registry's common
-    signature and not used: the closed form needs no start. A grooved roller is refused."""
+    signature and not used: the closed form needs no start. A grooved roller is refused.
+
+    Where the closed form has no answer (module text) it raises
+    :class:`~webfem.errors.NoAdmissibleSolution` naming the reason, or with
+    ``raise_on_failure=False`` returns the result with ``converged = False`` and the reason
+    in ``solver_message`` (:func:`no_answer`), never to be read as an answer.
+    """
     grooves_refused(case, "the closed form")
-    thin_film_check(case)
+    if raise_on_failure:
+        thin_film_check(case)
     t0 = time.perf_counter()
     values = evaluate(**case_arrays([case]), variant=case.friction_variant,
                       distribution=case.friction.distribution)
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
-    if not summary.converged:
+    if not summary.converged and raise_on_failure:
         raise NoAdmissibleSolution(f"no admissible closed-form answer: "
                                    f"{summary.solver_message}")
     R, B = case.roller.radius, case.B
@@ -202,7 +386,9 @@ def solve(case: Case, options: ClosedFormOptions | None = None, **values) -> Res
 
 
 def solve_many(cases) -> list[Result]:
-    """Solve many cases in one vectorised evaluation (summaries only, no fields)."""
+    """Solve many cases in one vectorised evaluation (summaries only, no fields). A point
+    where the closed form has no answer is returned with ``converged = False`` and the
+    reason in ``solver_message`` (what :func:`solve_case` would raise), as sweeps keep it."""
     cases = list(cases)
     for c in cases:
         grooves_refused(c, "the closed form")

@@ -26,15 +26,15 @@ from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES
-from ..physics.effects import idler_check, included
-from ..physics.friction import delta_T_from_mu, friction_for
+from ..physics.effects import included
+from ..physics.friction import friction_for
 from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Diagnostics, Fields, Result, Summary
 from .admissible import _no_admissible_solution, admissibility
 from .mesh_error import MeshError, estimate_mesh_error, summary_keys
 from .readout import pressure_and_gradient, read_out
-from .refine import adapted_nodes, minimum
+from .refine import adapted_nodes
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
            "admissibility"]
@@ -277,9 +277,6 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver,
             mesh_error: MeshError) -> Result:
     Hs = case.h_scale
     ro = read_out(case, problem, u, prm)
-    # at the onset of slip the sliding speed is small: the asperities hold with the static
-    # mu_cc on the share of the wrap load they carry, the film with nothing
-    idler = idler_check(case, case.friction.mu_cc * ro.contact_share)
     extra = dict(disc.summary_extra(case, problem, options))
     if hasattr(disc, "summary_state"):
         extra.update(disc.summary_state(case, problem, u, prm, ro.pts, ro.wts))
@@ -288,11 +285,10 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver,
     slip = slip_warning(case, ro.h_min)
     if slip:
         warnings.append(slip)
-    shares, mu = ro.shares, ro.mu
+    shares = ro.shares
     summary = Summary(
         model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,
-        h_min=ro.h_min, x_min=ro.x_min, mu=mu,
-        delta_T=float(delta_T_from_mu(mu, case.tension_eff, case.B)),
+        h_min=ro.h_min, x_min=ro.x_min,
         regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
         eq21_valid=bool(eq21_valid(case.beta, case.lam)),
         converged=bool(info["converged"]), iterations=int(info["iterations"]),
@@ -303,7 +299,7 @@ def _result(disc, case, problem, u, prm, info, elapsed, options, solver,
         method=options.method, mesh=disc.mesh_text(problem, options),
         warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
         solver_message=info.get("reason", ""), T_eff=case.tension_eff,
-        bending_stiffness_used=case.bending_used, effects=included(case), **idler,
+        bending_stiffness_used=case.bending_used, effects=included(case), **ro.traction,
         **summary_keys(mesh_error), **{"n_cells": len(problem.X) - 1, **extra})
     diagnostics = Diagnostics(
         method=options.method, history=tuple(info.get("history", [])),

@@ -41,8 +41,9 @@ from ..fem.mesh import graded_nodes, refine_nodes
 from ..fem.meshfile import read_x_nodes
 from ..fem.scaling import FoilParameters
 from ..result import Result
-from .driver import Start, minimum, solve_fe
+from .driver import Start, solve_fe
 from .line import FoilBearing1D
+from .refine import minimum
 from .model_error import fe1d_errors
 from .options import FE1DOptions
 

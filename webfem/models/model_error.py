@@ -56,38 +56,42 @@ def _share(case: Case, h, w) -> float:
     return float(np.sum(np.minimum(pc / case.p_bar, 1.0) * w))
 
 
-def closed_form_errors(case: Case, summary, fields) -> dict[str, float]:
-    """The closed form's estimated error per quantity (``summary`` and ``fields`` of its
-    result: the gaps along the wrap).
+def closed_form_errors(case: Case, summary) -> dict[str, float]:
+    """The closed form's estimated error per quantity, from its summary (Eq. 21's gap is
+    linear along the wrap: h_inlet, falling by 2 R kappa to the outlet).
 
     The gaps move by the difference between Eq. 21's fit and the wide-web gap with edge
     leakage (1.87/lambda at the exit constriction, whose depth Eshel-Elrod's 0.716 gives);
     mu and the contact share are re-evaluated on the moved gap, and mu's error also counts
     the film's pressure-driven shear (h/2) dp/dx that Eq. 21 leaves out: about h / (R B)
-    over the wrap, from the pressure's rise and fall at the wrap's edges (all of mu where
-    nothing slides)."""
+    over the wrap, from the pressure's rise and fall at the wrap's edges. Where nothing
+    slides mu is the onset traction mu_cc x the contact share, whose error it takes."""
     scale = case.h_scale
-    fit = cf.width_factor(case.lam)
-    shift = scale * (H0_WIDE * (1.0 - LEAK_CENTER / case.lam) - fit)   # corrected - fitted
-    x, h = np.asarray(fields["x"]), np.asarray(fields["h"])
+    R, B = case.roller.radius, case.B
+    shift = scale * (H0_WIDE * (1.0 - LEAK_CENTER / case.lam)
+                     - cf.width_factor(case.lam))          # corrected minus fitted gap [m]
     g, gw = np.polynomial.legendre.leggauss(200)
-    s = 0.5 * (g + 1.0) * (x[-1] - x[0]) + x[0]
-    hq = np.interp(s, x, h)
+    s = 0.5 * (g + 1.0)
+    w = 0.5 * gw
+    hq = summary["h_inlet"] - 2.0 * R * summary["kappa"] * s     # inlet to outlet, unclamped
     resting = np.maximum(hq, summary["h_c"])     # the web rests at h_c where Eq. 21 lands it
     moved = np.maximum(hq + shift, summary["h_c"])
-    w = 0.5 * gw
-    R, B = case.roller.radius, case.B
     h_min = (H_MIN_RATIO * H0_WIDE * (1.0 - LEAK_MIN / case.lam) * scale
              - 2.0 * R * summary["kappa"])       # the exit minimum, permeation included
-    pressure_shear = max(summary["h_inlet"], summary["h_center"]) / (R * B)
-    mu_moved, mu_here = _mu(case, moved, w), _mu(case, resting, w)
-    mu_error = abs(mu_moved - mu_here) + pressure_shear
+    share_error = SAFETY * abs(_share(case, moved, w) - _share(case, resting, w))
+    if summary.get("mu_film") is not None:
+        mu_error = SAFETY * case.friction.mu_cc * abs(_share(case, moved, w)
+                                                      - _share(case, resting, w))
+        mu_error /= error_scale(case, "mu", summary["mu"])
+    else:
+        pressure_shear = max(summary["h_inlet"], summary["h_center"]) / (R * B)
+        mu_here = _mu(case, resting, w)
+        mu_error = _relative(case, "mu", mu_here + abs(_mu(case, moved, w) - mu_here)
+                             + pressure_shear, mu_here)
     errors = {"h_center": _relative(case, "h_center", summary["h_center"] + shift,
                                     summary["h_center"]),
               "h_min": _relative(case, "h_min", h_min, summary["h_min"]),
-              "mu": _relative(case, "mu", mu_here + mu_error, mu_here),
-              "contact_share": SAFETY * abs(_share(case, moved, w)
-                                            - _share(case, resting, w))}
+              "mu": mu_error, "contact_share": share_error}
     if not summary["eq21_valid"]:
         # outside the range Eq. 21 was fitted in, the leakage law above is not calibrated
         # either (a 17 mm web at lambda ~ 3: h_min 64 % off where it says 30 %)
@@ -113,9 +117,13 @@ def fe1d_errors(case: Case, summary, diagnostics) -> dict[str, float]:
     # asperity contact gathers where the film is thinnest, at the exit constriction, which
     # leaks at the minimum gap's rate
     lowest = _lowered(case, d.wrap_h, summary["h_c"], LEAK_MIN)
+    share_error = SAFETY * abs(_share(case, lowest, d.wrap_w) - _share(case, d.wrap_h,
+                                                                        d.wrap_w))
+    if summary.get("mu_film") is not None:     # nothing slides: mu = mu_cc x contact share
+        mu_error = case.friction.mu_cc * share_error / error_scale(case, "mu", summary["mu"])
+    else:
+        mu_error = _relative(case, "mu", _mu(case, low, d.wrap_w, d.wrap_p, d.wrap_dpdx),
+                             summary["mu"])
     return {"h_center": SAFETY * LEAK_CENTER / case.lam,
-            "h_min": SAFETY * LEAK_MIN / case.lam,
-            "mu": _relative(case, "mu", _mu(case, low, d.wrap_w, d.wrap_p, d.wrap_dpdx),
-                            summary["mu"]),
-            "contact_share": SAFETY * abs(_share(case, lowest, d.wrap_w)
-                                          - _share(case, d.wrap_h, d.wrap_w))}
+            "h_min": SAFETY * LEAK_MIN / case.lam, "mu": mu_error,
+            "contact_share": share_error}

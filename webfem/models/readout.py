@@ -13,6 +13,7 @@ import numpy as np
 from ..case import Case
 from ..fem import forms
 from ..fem.scaling import FoilParameters
+from ..physics.effects import traction_summary
 from ..physics.friction import friction_for
 from .refine import minimum, wrap_samples
 
@@ -25,9 +26,11 @@ READ_QUANTITIES = ("h_center", "h_min", "mu", "contact_share")
 @dataclass(frozen=True)
 class ReadOut:
     """The gaps [m] at the wrap centre and edges, the smallest gap and where [m], the
-    wrap-averaged friction ``mu``, the regime shares, the share of the wrap load carried by
-    asperity contact, and the wrap quadrature (points, weights, gaps, pressure and its
-    gradient, the local friction) the summary and diagnostics keep."""
+    headline friction ``mu`` (where nothing slides the traction at the onset of slip,
+    :func:`~webfem.physics.effects.traction_summary`, whose keys ``traction`` holds), the
+    regime shares, the share of the wrap load carried by asperity contact, and the wrap
+    quadrature (points, weights, gaps, pressure and its gradient) the summary and
+    diagnostics keep."""
 
     h_center: float
     h_inlet: float
@@ -42,6 +45,7 @@ class ReadOut:
     h: np.ndarray
     p: np.ndarray
     dpdx: np.ndarray
+    traction: dict
 
     def value(self, name: str) -> float:
         """One of :data:`READ_QUANTITIES` by name."""
@@ -75,9 +79,11 @@ def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
     Hmin, Xmin = minimum(problem, u, prm)
     e = 0.5 * prm.beta
     H3 = problem.gap(u, prm, np.array([0.0, -e, e]))
+    traction = traction_summary(case, mu, contact_share)
     return ReadOut(h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
-                   h_min=Hmin * Hs, x_min=Xmin * case.x_scale, mu=mu, shares=shares,
-                   contact_share=contact_share, pts=pts, wts=wts, h=h, p=p, dpdx=dpdx)
+                   h_min=Hmin * Hs, x_min=Xmin * case.x_scale, mu=traction["mu"],
+                   shares=shares, contact_share=contact_share, pts=pts, wts=wts, h=h, p=p,
+                   dpdx=dpdx, traction=traction)
 
 
 #: mu's error is relative to mu, or to this fraction of mu_cc where mu is smaller (where

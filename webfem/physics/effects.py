@@ -29,8 +29,10 @@ from __future__ import annotations
 
 import math
 
+from .friction import delta_T_from_mu
+
 __all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
-           "idler_check"]
+           "idler_check", "traction_summary"]
 
 #: Every effect, in the order tables list them.
 EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction")
@@ -86,3 +88,52 @@ def idler_check(case, mu_onset: float) -> dict:
     available = case.tension_eff * math.expm1(mu_onset * case.B)
     return dict(delta_T_required=required, delta_T_available=available,
                 slip_margin=available / required, mu_onset=mu_onset)
+
+
+def traction_summary(case, mu: float, contact_share: float) -> dict:
+    """The traction keys of every model's summary: ``mu``, ``delta_T``, ``mu_film``,
+    ``delta_T_film`` and the idler keys of :func:`idler_check`.
+
+    Parameters
+    ----------
+    case : Case
+        The operating point.
+    mu : float
+        The wrap-averaged friction coefficient at the stated speeds (what the model computed
+        from the film and the contact).
+    contact_share : float
+        The share of the wrap load that asperity contact carries (0 to 1).
+
+    Returns
+    -------
+    dict
+        Where something slides (U_s = |U_r - U_w| > 0): ``mu`` as given, ``delta_T`` =
+        T_eff (exp(mu B) - 1), ``mu_film`` and ``delta_T_film`` None. Where nothing slides
+        (U_s = 0: an idler turning with the web) the traction at the stated speeds is only
+        the film's pressure-driven drag, tiny and of either sign; a belt-formula measurement
+        (pull the web until the roller slips) reads the traction available at the onset of
+        slip instead. So there ``mu`` = ``mu_onset`` = mu_cc x ``contact_share`` (the
+        asperities hold with the static mu_cc on the load they carry, the film with nothing)
+        and ``delta_T`` = ``delta_T_available`` = T_eff (exp(mu_onset B) - 1), given even when
+        the case states no idler load; the film's own drag goes to ``mu_film`` and
+        ``delta_T_film``.
+
+    Examples
+    --------
+    >>> from webfem import Case
+    >>> idler = Case().updated({"roller.speed": 10.0, "web.speed": 10.0})
+    >>> out = traction_summary(idler, -2e-4, 0.5)
+    >>> round(out["mu"], 3), out["mu"] == out["mu_onset"], out["mu_film"]
+    (0.15, True, -0.0002)
+    >>> traction_summary(Case(), 0.137, 0.9)["mu_film"] is None
+    True
+    """
+    T, B = case.tension_eff, case.B
+    mu_onset = case.friction.mu_cc * contact_share
+    idler = idler_check(case, mu_onset)
+    delta_T = float(delta_T_from_mu(mu, T, B))
+    if case.U_slide != 0.0:
+        return dict(mu=mu, delta_T=delta_T, mu_film=None, delta_T_film=None, **idler)
+    available = T * math.expm1(mu_onset * B)
+    idler.update(mu_onset=mu_onset, delta_T_available=available)
+    return dict(mu=mu_onset, delta_T=available, mu_film=mu, delta_T_film=delta_T, **idler)

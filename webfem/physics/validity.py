@@ -17,6 +17,7 @@ from ..errors import NoAdmissibleSolution
 from .contact import contact_pressure
 
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
+           "thin_film_message",
            "wrap_length_check", "slip_warning", "contact_overload"]
 
 #: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
@@ -29,17 +30,29 @@ THIN_FILM_RATIO = 0.01
 BETA_MAX = 5000.0
 
 
-def thin_film_check(case) -> None:
-    """Raise :class:`InputError` when the film scale R eps^(2/3) exceeds
-    :data:`THIN_FILM_RATIO` R (the thin-film model does not hold)."""
+def thin_film_message(case) -> str | None:
+    """Why the thin-film model does not hold for ``case`` (its film scale R eps^(2/3) above
+    :data:`THIN_FILM_RATIO` R), or None when it holds. The closed form's vectorised path
+    flags a point with this text where :func:`thin_film_check` would raise."""
     R = case.roller.radius
-    if case.h_scale > THIN_FILM_RATIO * R:
-        raise NoAdmissibleSolution(
-            f"web.tension = {case.web.tension:g} N/m with U = {case.U:g} m/s and "
+    if case.h_scale <= THIN_FILM_RATIO * R:
+        return None
+    # a moving web spends rho_w t U_w^2 of its tension turning: say so when that is the cause
+    inertia = (f" (T_eff = {case.tension_eff:.3g} N/m after the moving web's inertia)"
+               if case.web_inertia > 0.0 else "")
+    return (f"web.tension = {case.web.tension:g} N/m{inertia} with U = {case.U:g} m/s and "
             f"air.viscosity = {case.air.viscosity:g} Pa s gives a film R eps^(2/3) = "
             f"{case.h_scale:.3g} m thick, more than R/100 = {THIN_FILM_RATIO * R:.2g} m: the "
             "thin-film (Reynolds) model does not hold; raise web.tension or lower the speeds "
             "or air.viscosity")
+
+
+def thin_film_check(case) -> None:
+    """Raise :class:`NoAdmissibleSolution` (an :class:`InputError`) when the film scale
+    R eps^(2/3) exceeds :data:`THIN_FILM_RATIO` R (the thin-film model does not hold)."""
+    message = thin_film_message(case)
+    if message:
+        raise NoAdmissibleSolution(message)
 
 
 def wrap_length_check(case) -> None:

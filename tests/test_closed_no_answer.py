@@ -1,0 +1,229 @@
+"""The closed form says when it has no answer (issue 20, item 5).
+
+A wrap landed from edge to edge, h_c <= 0 where Eq. 21 lands the web, mu beyond what the
+asperities and the air between them can carry, a gap above R/100 or a film thicker than
+R/100: one solve refuses with NoAdmissibleSolution (exit 2) naming the reason; the vectorised
+path (sweeps) keeps the point with converged = False and the same reason; auto never
+returns it. A partly landed wrap stays an answer (the paper's boundary lubrication).
+"""
+
+import numpy as np
+import pytest
+
+import webfem
+from webfem import Case
+from webfem.cli import main
+from webfem.errors import NoAdmissibleSolution
+from webfem.models import closed
+from webfem.models.options import ClosedFormOptions
+from webfem.sweeps.table import read_table, typed
+
+pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
+
+BASE = Case()
+
+
+def code(case: Case) -> str:
+    """The NO_ANSWER name of ``case`` from the vectorised evaluation."""
+    values = closed.evaluate(**closed.case_arrays([case]), variant=case.friction_variant,
+                             distribution=case.friction.distribution)
+    return closed.NO_ANSWER[int(values["no_answer"][0])]
+
+
+# -- each reason, on the single solve and the vectorised path --------------------------------
+def test_contact_overload_where_the_web_lands_is_refused(capsys):
+    """T = 500 N/m on R = 55 mm: T/R = 9091 Pa against E_b sigma/(2t) = 175e3 * 4e-6 / 140e-6
+    = 5000 Pa at h = 0, so h_c = sigma ln(5000/9091) = -2.39 um; Eq. 21 lands 96 % of the
+    wrap. Today's answer (mu 0.456, above mu_cc) is no answer: exit 2, naming h_c, the
+    wrap pressure, the limit and the key to change."""
+    assert main(["solve", "base", "--model", "closed-form", "--set", "web.tension=500"]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    assert "h_c = -2.39e-06 m <= 0" in err and "9091 Pa" in err and "5000 Pa" in err
+    assert "web.tension below 275 N/m" in err
+    assert code(BASE.updated({"web.tension": 500.0})) == "contact"
+
+
+def test_contact_overload_at_crawling_speed_is_refused_by_auto_too(capsys):
+    """U_r = 1e-5 m/s, T = 300 N/m: the wrap is 6820 entry lengths long (beyond the FE
+    models), h_c = -0.35 um and Eq. 21 lands the whole wrap but 2 nm at the inlet. auto
+    answered with the closed form's gap 0 and mu 0; now it refuses, with the reason."""
+    argv = ["solve", "base", "--set", "roller.speed=1e-5", "--set", "web.tension=300"]
+    assert main(argv) == 2
+    assert main(argv + ["--model", "closed-form"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("h_c = -3.48e-07 m <= 0 where Eq. 21 lands the web") == 2
+    with pytest.raises(NoAdmissibleSolution, match="no admissible closed-form answer"):
+        webfem.solve(BASE.updated({"roller.speed": 1e-5, "web.tension": 300.0}),
+                     model="auto")
+
+
+def test_h_c_below_zero_is_an_answer_while_the_film_flies():
+    """An impermeable web at T = 400 N/m: h_c = -1.5 um, but Eq. 21's gap (8.6 um) is
+    positive over the whole wrap, so the film carries T/R and nothing needs the contact
+    law (fe1d agrees: mu 0.019 against 0.030, both mixed)."""
+    r = webfem.solve(BASE.updated({"web.tension": 400.0, "web.permeability": 0.0}))
+    assert r["converged"] and r["h_c"] < 0.0 < r["h_min"]
+    assert closed.no_answer(r) is None
+    assert any("the film carries it here" in w for w in r["warnings"])
+
+
+def test_mu_beyond_asperities_and_valley_air_is_refused():
+    """T = 250 N/m at 20 m/s: h_c = 4e-6 ln(5000/4545) = 0.38 um rests the web far below its
+    roughness, and the Couette shear eta U_s/(h_c + 2 a lambda) there lifts mu to 0.417,
+    above mu_cc + c eta U_s / (sigma T/R) = 0.3 + 2.029 * 1.81e-5 * 20 / (4e-6 * 4545) =
+    0.340, with c = 0.5 ln(1 + 4e-6 / (2 * 65e-9)) + 0.3 = 2.029 bounding the shear of the
+    air between the asperities (its peak, by quadrature: 1.55 eta U_s / sigma)."""
+    case = BASE.updated({"web.tension": 250.0})
+    assert closed.mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9) == pytest.approx(
+        0.3 + 2.0293 * 1.81e-5 * 20.0 / (4e-6 * 250.0 / 0.055), rel=1e-4)
+    assert code(case) == "mu"
+    with pytest.raises(NoAdmissibleSolution, match=r"mu = 0\.417 is above .* mu <= 0\.34;"):
+        closed.solve(case)
+
+
+@pytest.mark.parametrize("ratio", [3.0, 30.0, 300.0, 1e4])
+def test_valley_shear_bound_is_above_the_shear_of_the_air_between_asperities(ratio):
+    """tau(h) = E[eta U_s / ((h - z) + 2 a lambda); z < h] over the Laplace heights
+    exp(-|z|/sigma)/(2 sigma) (physics.md), maximised over h by quadrature, lies below
+    valley_shear_bound and within 0.6 of it (sigma / (2 a lambda) = ``ratio``)."""
+    from scipy.integrate import quad
+    from scipy.optimize import minimize_scalar
+
+    from webfem.physics.friction import valley_shear_bound
+
+    cut = 1.0 / ratio    # in units of sigma
+
+    def tau(h):
+        f = lambda z: 0.5 * np.exp(-abs(z)) / ((h - z) + cut)   # noqa: E731
+        out = quad(f, -60.0, min(h, 0.0), limit=400)[0]
+        return out + (quad(f, 0.0, h, limit=400, points=[h * (1 - 1e-3)])[0] if h > 0 else 0)
+
+    peak = -minimize_scalar(lambda h: -tau(h), bounds=(0.0, 3.0), method="bounded").fun
+    bound = float(valley_shear_bound(ratio * 130e-9, 65e-9))
+    assert peak < bound < peak + 0.6
+
+
+def test_mu_a_little_above_mu_cc_is_an_answer():
+    """T = 120 N/m at 9 m/s (the paper's tension range): boundary friction 0.296 plus the
+    air's drag gives mu = 0.301, just above mu_cc = 0.3; that is an answer (fe1d: 0.281),
+    so the paper's tension trend still has its traction-loss speeds."""
+    r = webfem.solve(BASE.updated({"web.tension": 120.0, "roller.speed": 9.0}))
+    assert r["converged"] and 0.3 < r["mu"] < 0.31
+
+
+def test_film_thicker_than_R_over_100_is_flagged_in_sweeps():
+    """T = 0.01 N/m at 20 m/s: eps = 6 * 1.81e-5 * 20 / 0.01 = 0.217, R eps^(2/3) = 20 mm,
+    far above R/100 = 0.55 mm. A single solve refused it already; the vectorised path (every
+    closed-form sweep) returned it as converged, with gaps of millimetres."""
+    case = BASE.updated({"web.tension": 0.01})
+    assert code(case) == "thin-film"
+    r = closed.solve_many([case])[0]
+    assert r["converged"] is False
+    assert "more than R/100 = 0.00055 m" in r["solver_message"]
+    with pytest.raises(NoAdmissibleSolution, match="more than R/100"):
+        closed.solve(case)
+
+
+def test_gap_above_R_over_100_is_no_answer():
+    """Asperities 1 m tall (sigma = 1 m, called directly: such a key may become an input
+    error): h_c = 1 * ln(175e3 * 1 / (140e-6 * 1454.5)) = 13.7 m, where the web would rest,
+    25000 times R/100."""
+    arrays = closed.case_arrays([BASE])
+    arrays["sigma"] = np.array([1.0])
+    values = closed.evaluate(**arrays, variant="loads")
+    assert values["h_c"][0] == pytest.approx(13.66, rel=1e-3)
+    assert closed.NO_ANSWER[int(values["no_answer"][0])] == "gap"
+    r = closed.solve_many([BASE.updated({"friction.roughness": "composite",
+                                         "roller.roughness": 1.0})])[0]
+    assert not r["converged"]
+    assert "h_c = 13.7 m" in r["solver_message"] and "roller.roughness = 1 m" in \
+        r["solver_message"]
+
+
+def test_landed_from_edge_to_edge_is_no_answer():
+    """Eq. 21's inlet gap R eps^(2/3) (0.589 - 1.614/lambda + 1.764/lambda^2) is positive for
+    every lambda (the quadratic has no real root), so only U = 0, which a Case refuses,
+    lands the whole wrap; evaluate() is called with arrays and must say so too."""
+    arrays = closed.case_arrays([BASE])
+    arrays["U_r"] = np.array([0.0])
+    with np.errstate(all="ignore"):
+        values = closed.evaluate(**arrays, variant="loads")
+    assert closed.NO_ANSWER[int(values["no_answer"][0])] == "landed"
+
+
+# -- what stays an answer ----------------------------------------------------------------------
+def test_partly_landed_low_speed_wrap_is_an_answer():
+    """At 0.5 m/s Eq. 21 lands all but 0.2 % of the wrap (h_inlet 2.3 um, 2 R kappa 1.3 mm);
+    the web rests on its asperities: boundary lubrication, mu = (2/pi) 0.3 atan(0.5/0.4) =
+    0.1714 plus the air's shear over h_c, as in the paper and the FE models (0.17)."""
+    r = webfem.solve(BASE.updated({"roller.speed": 0.5}))
+    assert r["converged"] and r["h_outlet"] == 0.0 and r["regime"] == "boundary"
+    assert r["mu"] == pytest.approx(0.1714, abs=0.005)
+
+
+def test_base_sweep_answers_at_every_speed():
+    """The closed-form sweep of cases/base.toml (make run, the README's chart): every point
+    from 0.5 to 40 m/s is an answer, the slow ones boundary lubrication."""
+    spec = webfem.load_sweep("cases/base.toml")
+    assert spec.values[0] == 0.5 and spec.values[-1] == 40.0
+    results = [r for _, _, r in webfem.sweep(spec, "closed-form")]
+    assert len(results) == 80 and all(r["converged"] for r in results)
+    assert results[0]["regime"] == "boundary" and results[0]["mu"] > 0.15
+
+
+# -- one rule for both paths, and for auto -----------------------------------------------------
+CASES = [BASE.updated(v) for v in (
+    {}, {"roller.speed": 0.5}, {"web.tension": 500.0}, {"web.tension": 250.0},
+    {"web.tension": 0.01}, {"web.tension": 120.0, "roller.speed": 9.0},
+    {"web.tension": 400.0, "web.permeability": 0.0},
+    {"web.tension": 300.0, "friction.variant": "paper"},
+    {"web.tension": 270.0, "roller.speed": 3.0, "friction.variant": "continuous"})]
+
+
+def test_vectorised_and_single_solves_agree():
+    """solve_many flags exactly the points solve_case refuses, with the same reason; with
+    raise_on_failure=False solve_case returns them flagged, as auto reads them."""
+    many = closed.solve_many(CASES)
+    refused = 0
+    for case, r in zip(CASES, many):
+        flagged = closed.solve_case(case, ClosedFormOptions(), raise_on_failure=False)
+        assert flagged["converged"] == r["converged"]
+        assert closed.no_answer(flagged) == closed.no_answer(r)
+        try:
+            closed.solve(case)
+        except NoAdmissibleSolution as err:
+            refused += 1
+            assert not r["converged"]
+            assert closed.no_answer(r) in str(err)
+            assert any(w.startswith("no closed-form answer: ") for w in r["warnings"])
+        else:
+            assert r["converged"] and closed.no_answer(r) is None
+    assert refused == 4
+
+
+def test_sweep_keeps_no_answer_points_marked(tmp_path, capsys):
+    """A closed-form sweep of a less permeable web (k = 5e-16 m^2) at T = 300 N/m (h_c =
+    -0.35 um): Eq. 21 lands it at 0.5 and 5 m/s, not at 60 m/s (h_outlet = 15.6 um). Every
+    point is written; those without an answer are not converged, with the reason in
+    solver_message; exit 3 says some points have none."""
+    case = tmp_path / "t.toml"
+    case.write_text("[web]\ntension = 300.0\npermeability = 5e-16\n[sweep]\n"
+                    "parameter = 'roller.speed'\nvalues = [0.5, 5.0, 60.0]\n")
+    assert main(["sweep", str(case), "--model", "closed-form", "--out", str(tmp_path),
+                 "--quiet"]) == 3
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "no converged, admissible answer" in err
+    rows = typed(read_table(tmp_path / "t_closed-form.csv").rows)
+    assert [r["converged"] for r in rows] == [False, False, True]
+    assert all("h_c = " in r["solver_message"] and "web.tension" in r["solver_message"]
+               for r in rows[:2])
+
+
+def test_json_of_a_refusal_is_no_answer(capsys):
+    """--json prints no answer on stdout for a refused point (no JSON a script could take for
+    one); the message goes to stderr."""
+    assert main(["solve", "base", "--model", "closed-form", "--json", "--set",
+                 "web.tension=500"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and "no admissible closed-form answer" in err and "Traceback" not in err
