@@ -62,7 +62,7 @@ def test_h_c_below_zero_is_an_answer_while_the_film_flies():
     """An impermeable web at T = 400 N/m: h_c = -1.5 um, but Eq. 21's gap (8.6 um) is
     positive over the whole wrap, so the film carries T/R and nothing needs the contact
     law (fe1d agrees: mu 0.019 against 0.030, both mixed)."""
-    r = webfem.solve(BASE.updated({"web.tension": 400.0, "web.permeability": 0.0}))
+    r = webfem.solve(BASE.updated({"web.tension": 400.0, "web.permeability": 0.0}), model="closed-form")
     assert r["converged"] and r["h_c"] < 0.0 < r["h_min"]
     assert closed.no_answer(r) is None
     assert any("the film carries it here" in w for w in r["warnings"])
@@ -108,7 +108,7 @@ def test_mu_a_little_above_mu_cc_is_an_answer():
     """T = 120 N/m at 9 m/s (the paper's tension range): boundary friction 0.296 plus the
     air's drag gives mu = 0.301, just above mu_cc = 0.3; that is an answer (fe1d: 0.281),
     so the paper's tension trend still has its traction-loss speeds."""
-    r = webfem.solve(BASE.updated({"web.tension": 120.0, "roller.speed": 9.0}))
+    r = webfem.solve(BASE.updated({"web.tension": 120.0, "roller.speed": 9.0}), model="closed-form")
     assert r["converged"] and 0.3 < r["mu"] < 0.31
 
 
@@ -157,7 +157,7 @@ def test_partly_landed_low_speed_wrap_is_an_answer():
     """At 0.5 m/s Eq. 21 lands all but 0.2 % of the wrap (h_inlet 2.3 um, 2 R kappa 1.3 mm);
     the web rests on its asperities: boundary lubrication, mu = (2/pi) 0.3 atan(0.5/0.4) =
     0.1714 plus the air's shear over h_c, as in the paper and the FE models (0.17)."""
-    r = webfem.solve(BASE.updated({"roller.speed": 0.5}))
+    r = webfem.solve(BASE.updated({"roller.speed": 0.5}), model="closed-form")
     assert r["converged"] and r["h_outlet"] == 0.0 and r["regime"] == "boundary"
     assert r["mu"] == pytest.approx(0.1714, abs=0.005)
 

@@ -78,7 +78,7 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
         if closed.no_answer(r):
             raise NoAdmissibleSolution(
                 f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), beyond "
-                f"the FE models, and the closed form has no answer: {closed.no_answer(r)}")
+                f"the FE models, and no admissible closed-form answer: {closed.no_answer(r)}")
         return _answer(r, quantities, tol,
                        [f"the wrap is {case.beta:.4g} entry lengths long (> {BETA_MAX:g}), "
                         "beyond the FE models; the air film is negligible: closed form"])
