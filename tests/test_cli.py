@@ -37,7 +37,7 @@ def test_solve_set_override(capsys):
 def test_bad_input_exits_2_with_message(capsys):
     assert main(["solve", "cases/base.toml", "--set", "web.width=-2"]) == 2
     err = capsys.readouterr().err
-    assert "web.width = -2.0" in err and "> 0" in err
+    assert "web.width = -2.0" in err and ">= 0.001 and <= 10 [m]" in err
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])

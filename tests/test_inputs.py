@@ -120,7 +120,7 @@ BAD_SWEEPS = [
     ('values = [1]\n[[series]]\nlabel = "a"\nroller = { speed = 3 }',
      ["roller.speed = 3", "series 'a'", "swept parameter"]),
     ('values = [1]\n[[series]]\nlabel = "a"\nweb = { tension = -1 }',
-     ["web.tension = -1.0", "> 0", "series 'a'"]),
+     ["web.tension = -1.0", ">= 0.01", "series 'a'"]),
     ("values = [" + ", ".join(map(str, range(1, 2001))) + "]\n" + _series(51),
      ["2000 values x 51 series = 102000 points", "at most 100000"]),
 ]
