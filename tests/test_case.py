@@ -221,3 +221,31 @@ def test_docs_inputs_lists_every_range():
     for key in NUMERIC + list(ALIASES):
         rng = key_range(key).removeprefix("must be ")
         assert f"| `{key}` | {rng} | {key_unit(key)} |" in text, key
+
+
+# -- did-you-mean: only names that exist, where they exist (issue 20) ---------------------
+
+@pytest.mark.parametrize("text,words,never", [
+    ("web=80", ["'web'", "is a section, not a key", "web.KEY=VALUE", "tension"], "did you mean"),
+    ("roller.tension=3", ["not a key of [roller] but of [web]", "'web.tension'"], "did you mean 'roller"),
+    ("roller.width=0.1", ["but of [web]", "'web.width'"], "groove_width"),
+    ("air.speed=3", ["[roller] and [web]", "'roller.speed' or 'web.speed'"], None),
+    ("tension=3", ["did you mean 'web.tension'"], None),
+    ("web.tensoin=3", ["did you mean 'web.tension'"], None),
+    ("web.foo=3", ["the keys of [web]: width, tension"], "did you mean"),
+    ("rollr.radius=0.05", ["did you mean 'roller.radius'"], None),
+])
+def test_unknown_key_suggests_only_what_exists(text, words, never):
+    with pytest.raises(CaseError) as err:
+        parse_assignment(text)
+    msg = str(err.value)
+    for w in words:
+        assert w in msg, msg
+    assert never is None or never not in msg, msg
+
+
+def test_unknown_table_suggests_a_section(tmp_path):
+    p = tmp_path / "c.toml"
+    p.write_text("[webb]\nwidth = 0.03\n")
+    with pytest.raises(CaseError, match="unknown section 'webb' in .*c.toml; did you mean 'web'"):
+        load_case(p)

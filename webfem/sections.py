@@ -414,12 +414,69 @@ def _is_key(key: Any) -> bool:
     return isinstance(key, str) and key in _KEYS
 
 
-def _unknown(key: Any, where: str = "") -> CaseError:
+def _section_keys(section: str) -> list[str]:
+    """The key names of ``section`` (its aliases included), e.g. ``width`` for ``web``."""
+    names = [f.name for f in dataclasses.fields(_SECTIONS[section])]
+    return names + [a.split(".", 1)[1] for a in ALIASES if a.startswith(section + ".")]
+
+
+def _where_named(name: str) -> list[str]:
+    """The dotted keys (aliases included) whose name is ``name``, in any section."""
+    return [f"{s}.{name}" for s in _SECTIONS if name in _section_keys(s)]
+
+
+def _either(keys: list[str]) -> str:
+    return " or ".join(f"'{k}'" for k in keys)
+
+
+def _unknown(key: Any, where: str = "", table: bool = False) -> CaseError:
+    """The error for a name that is no case key: a suggestion only where it exists (a
+    section's own keys for ``web.tensoin``; the section that has the key for
+    ``roller.tension``; the keys of a section given as a key, ``web=80``). ``table``: the
+    name heads a TOML table, so a close section name is what to suggest."""
     key = key if isinstance(key, str) else _show(key)
-    close = difflib.get_close_matches(key, valid_keys() + list(ALIASES) + list(_SECTIONS), n=1,
-                                      cutoff=0.5)
-    hint = f"; did you mean '{close[0]}'?" if close else "; valid keys: " + ", ".join(valid_keys())
-    return CaseError(f"unknown key '{key}'{where}{hint}")
+    head = f"unknown key '{key}'{where}"
+    if key in _SECTIONS and not table:
+        return CaseError(f"'{key}'{where} is a section, not a key: give {key}.KEY=VALUE with "
+                         f"one of its keys: {', '.join(_section_keys(key))}")
+    if table:
+        close = difflib.get_close_matches(key, list(_SECTIONS), n=1, cutoff=0.5)
+        hint = (f"; did you mean '{close[0]}'?" if close
+                else "; sections: " + ", ".join(_SECTIONS))
+        return CaseError(f"unknown section '{key}'{where}{hint}")
+    section, dot, name = key.partition(".")
+    if not dot:   # a bare name: the key of some section, or a misspelt one
+        owners = _where_named(key)
+        if owners:
+            return CaseError(f"{head}: '{key}' is a key of a section; did you mean "
+                             f"{_either(owners)}?")
+        names = sorted({n for s in _SECTIONS for n in _section_keys(s)})
+        close = difflib.get_close_matches(key, names, n=1, cutoff=0.6)
+        if close:
+            return CaseError(f"{head}; did you mean {_either(_where_named(close[0]))}?")
+        return CaseError(f"{head}; a key is SECTION.NAME, e.g. web.tension (`webfem keys` "
+                         "lists them)")
+    if section in _SECTIONS:
+        own = _section_keys(section)
+        owners = _where_named(name)   # an exact name elsewhere beats a near one here
+        if owners:
+            of = " and ".join(f"[{o.split('.')[0]}]" for o in owners)
+            return CaseError(f"{head}: '{name}' is not a key of [{section}] but of {of}; "
+                             f"did you mean {_either(owners)}?")
+        close = difflib.get_close_matches(name, own, n=1, cutoff=0.5)
+        if close:
+            return CaseError(f"{head}; did you mean '{section}.{close[0]}'?")
+        return CaseError(f"{head}; the keys of [{section}]: {', '.join(own)}")
+    owners = _where_named(name)   # a misspelt section: the key's own section
+    close = difflib.get_close_matches(section, list(_SECTIONS), n=1, cutoff=0.5)
+    if owners:
+        return CaseError(f"{head}; did you mean {_either(owners)}?")
+    if close:
+        near = difflib.get_close_matches(name, _section_keys(close[0]), n=1, cutoff=0.5)
+        if near:
+            return CaseError(f"{head}; did you mean '{close[0]}.{near[0]}'?")
+    return CaseError(f"{head}; sections: {', '.join(_SECTIONS)} (`webfem keys` lists their "
+                     "keys)")
 
 
 def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
@@ -428,7 +485,7 @@ def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
     for section, table in data.items():
         if section not in _SECTIONS:
             if isinstance(table, Mapping):
-                raise _unknown(section, where)
+                raise _unknown(section, where, table=True)
             flat[section] = table  # dotted key already, checked below
             continue
         if not isinstance(table, Mapping):
