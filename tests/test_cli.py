@@ -406,3 +406,26 @@ def test_wheel_installs_and_runs_from_an_empty_folder(tmp_path):
     where = subprocess.run([py, "-c", "import webfem; print(webfem.__file__)"], cwd=empty,
                            env=env, capture_output=True, text=True, check=True).stdout
     assert str(venv) in where   # the wheel's copy, not the source tree
+
+
+def test_a_local_file_beats_the_bundled_name_and_says_so(tmp_path, monkeypatch, capsys):
+    """`webfem init base`, edit ./base.toml, `webfem solve base`: the edited file answers,
+    and stderr says which file a bare name stood for (issue 20)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["solve", "base", "--model", "closed-form", "--json"]) == 0
+    out = capsys.readouterr()
+    assert json.loads(out.out)["U"] == pytest.approx(20.0)
+    assert "case 'base' is the bundled base.toml" in out.err
+    assert main(["init", "base"]) == 0
+    path = tmp_path / "base.toml"
+    path.write_text(path.read_text().replace("speed = 20.0", "speed = 35.0", 1))
+    capsys.readouterr()
+    for name in ("base", "base.toml"):
+        assert main(["solve", name, "--model", "closed-form", "--json"]) == 0
+        out = capsys.readouterr()
+        assert json.loads(out.out)["U"] == pytest.approx(35.0)
+    assert main(["solve", "base", "--model", "closed-form"]) == 0
+    err = capsys.readouterr().err
+    assert "case 'base' is ./base.toml, the file here (not the bundled case" in err
+    assert main(["solve", "base", "--set", "web=80"]) == 2   # a failure stays one line
+    _one_line(capsys.readouterr().err)

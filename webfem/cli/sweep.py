@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from ..case import load_sweep
-from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments,
+from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments, announce_case,
                      add_quiet_argument, add_units_argument, model_options, options_epilog,
                      output_folder, overrides, positive_int)
 
@@ -46,6 +46,7 @@ def run(args) -> int:
     from ..sweeps import run as run_sweep
 
     spec = load_sweep(args.case, overrides(args))
+    announce_case(args)
     if args.num is not None or args.log:
         spec = spec.respaced(args.num, log=args.log)   # --log without --num is an error
     options = model_options(args)
