@@ -122,7 +122,7 @@ def test_calibration_cli_and_file(tmp_path, capsys):
                            for r in rows))
     assert len(read_measurements(p)) == 10
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json", "--out",
-                 str(tmp_path)]) == 0
+                 str(tmp_path), "--model", "closed-form"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert abs(out["estimates"]["mu_cc"] - 0.33) <= out["ci95"]["mu_cc"]
     assert (tmp_path / "measured_calibration.png").stat().st_size > 10_000
@@ -266,7 +266,7 @@ def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
     loads = calibrate(read_measurements(p), Case())
     assert loads.identified == {"mu_cc": False, "speed_constant": False}
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json", "--set",
-                 "model.physics=paper"]) == 0
+                 "model.physics=paper", "--model", "closed-form"]) == 0
 
     def refuse(name):
         raise AssertionError(f"{name} in JSON output")
@@ -277,7 +277,7 @@ def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
     assert any("speed_constant cannot be identified" in n and "roller speeds" in n
                for n in out["notes"])
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--set",
-                 "model.physics=paper"]) == 0
+                 "model.physics=paper", "--model", "closed-form"]) == 0
     text = capsys.readouterr().out
     assert "not identified" in text and "+- 0 " not in text and "inf" not in text
 

@@ -106,12 +106,22 @@ def announce_case(args) -> None:
 HELP_FORMATTER = argparse.RawDescriptionHelpFormatter
 
 
+class _ModelAction(argparse.Action):
+    """``--model NAME``: stores the name and notes that it was given (``model_given``), so
+    an output can say "asked for by name" only when it was."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        namespace.model_given = True
+
+
 def add_case_arguments(parser: argparse.ArgumentParser, *, positional: bool = True,
-                       model: bool = True, default_model: str = "closed-form") -> None:
+                       model: bool = True, default_model: str = DEFAULT_MODEL) -> None:
     """The case file or bundled name (positional, or ``--case`` when ``positional`` is
     False), ``--set``, and with ``model`` also ``--model`` (the registry's names, default
-    ``default_model``; :data:`DEFAULT_MODEL` for the commands that answer an engineer's
-    question: solve, sweep, traction-loss) and ``--opt``."""
+    ``default_model``: :data:`DEFAULT_MODEL` for every command that answers a question
+    about a case, so that they all answer it alike; ``args.model_given`` says whether it
+    was given) and ``--opt``."""
     if positional:
         parser.add_argument("case", type=case_path,
                             help="case TOML file, or the name of a bundled case (`webfem "
@@ -128,8 +138,10 @@ def add_case_arguments(parser: argparse.ArgumentParser, *, positional: bool = Tr
                        "summary says which answered and why",
                "closed-form": "the paper's Eq. 21"}.get(default_model, "")
         parser.add_argument("--model", default=default_model, choices=list(MODELS),
+                            action=_ModelAction,
                             help=f"model to use (default: {default_model}"
                                  + (f", {why})" if why else ")"))
+        parser.set_defaults(model_given=False)
         parser.add_argument("--opt", action="append", metavar="NAME=VALUE",
                             help="model option, e.g. --opt method=picard --opt level=2 "
                                  "(repeatable; each model's options are listed below)")
