@@ -429,3 +429,69 @@ def test_a_local_file_beats_the_bundled_name_and_says_so(tmp_path, monkeypatch, 
     assert "case 'base' is ./base.toml, the file here (not the bundled case" in err
     assert main(["solve", "base", "--set", "web=80"]) == 2   # a failure stays one line
     _one_line(capsys.readouterr().err)
+
+
+# -- sweeps and charts (issue 20) ------------------------------------------------------------
+
+def _chart_axes(monkeypatch):
+    """Capture the figures sweep_chart saves (their axes, titles and legend texts)."""
+    from webfem.io import charts
+    seen = []
+    real = charts._save
+
+    def save(fig, path):
+        ax = fig.axes[0]
+        seen.append({"xscale": ax.get_xscale(), "title": ax.get_title(),
+                     "legend": [t.get_text() for lg in fig.legends for t in lg.get_texts()]})
+        return real(fig, path)
+    monkeypatch.setattr(charts, "_save", save)
+    return seen
+
+
+def test_grooved_fe2d_sweep_draws_its_chart_without_the_closed_form(tmp_path, capsys,
+                                                                     monkeypatch):
+    seen = _chart_axes(monkeypatch)
+    assert main(["sweep", "base_grooved", "--model", "fe2d", "--num", "2", "--out",
+                 str(tmp_path), "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert "no closed-form curve beside fe2d" in err and "grooved roller" in err
+    assert (tmp_path / "base_grooved_fe2d.png").stat().st_size > 10_000
+    assert "no closed-form curve" in seen[-1]["title"]
+    assert not any("closed-form" in t for t in seen[-1]["legend"])
+
+
+def test_log_sweep_has_a_log_axis_and_auto_rows_name_their_model(tmp_path, capsys,
+                                                                  monkeypatch):
+    seen = _chart_axes(monkeypatch)
+    assert main(["sweep", "base", "--model", "closed-form", "--num", "4", "--log", "--out",
+                 str(tmp_path), "--quiet"]) == 0
+    assert seen[-1]["xscale"] == "log"
+    assert main(["sweep", "base", "--model", "closed-form", "--num", "4", "--out",
+                 str(tmp_path / "lin"), "--quiet"]) == 0
+    assert seen[-1]["xscale"] == "linear"
+    rows = list(csv.DictReader((tmp_path / "base_closed-form.csv").open()))
+    assert {r["model_used"] for r in rows} == {"closed-form"} and {r["why"] for r in rows} == {""}
+    assert main(["sweep", "base", "--num", "2", "--out", str(tmp_path), "--quiet"]) == 0
+    rows = list(csv.DictReader((tmp_path / "base_auto.csv").open()))
+    assert {r["model"] for r in rows} == {"auto"}
+    assert all(r["model_used"] in ("closed-form", "fe1d", "fe2d") and r["why"] for r in rows)
+    title = seen[-1]["title"]
+    assert title.startswith("base: auto: ") and rows[0]["model_used"] in title
+
+
+def test_sweep_into_another_sweeps_csv_says_what_it_does(tmp_path, capsys):
+    argv = ["sweep", "cases/base.toml", "--model", "closed-form", "--out", str(tmp_path),
+            "--quiet"]
+    assert main([*argv, "--num", "3"]) == 0
+    csv_path = tmp_path / "base_closed-form.csv"
+    before = csv_path.read_text()
+    capsys.readouterr()
+    assert main([*argv, "--num", "4"]) == 2               # would drop points: refused
+    line = _one_line(capsys.readouterr().err)
+    assert "holds another sweep" in line and "--replace" in line
+    assert csv_path.read_text() == before
+    assert main([*argv, "--num", "4", "--replace"]) == 0
+    assert "replacing its 3 rows of another sweep" in capsys.readouterr().err
+    assert len(list(csv.DictReader(csv_path.open()))) == 4
+    assert main([*argv, "--num", "4"]) == 0
+    assert "resuming this sweep: 4 of 4 points already there" in capsys.readouterr().err
