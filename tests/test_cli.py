@@ -495,3 +495,22 @@ def test_sweep_into_another_sweeps_csv_says_what_it_does(tmp_path, capsys):
     assert len(list(csv.DictReader(csv_path.open()))) == 4
     assert main([*argv, "--num", "4"]) == 0
     assert "resuming this sweep: 4 of 4 points already there" in capsys.readouterr().err
+
+
+def test_vtu_states_the_reported_minimum_gap(tmp_path, capsys):
+    """The VTU's nodal h does not reach the reported h_min (it lies between nodes): its
+    field data give h_min, x_min, the nodal minimum and a note saying they differ."""
+    import meshio
+    from webfem.io.vtu import H_MIN_KEYS, H_MIN_NOTE, read_field_data
+    assert main(["solve", "base", "--model", "fe2d", "--json", "--vtu", str(tmp_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for part in ("web", "film"):
+        path = tmp_path / f"base_fe2d_{part}.vtu"
+        fields = read_field_data(path)
+        nodal = float(meshio.read(path).point_data["h [m]"].min())
+        assert fields["h_min [m]"] == pytest.approx(data["h_min"], rel=1e-12)
+        assert fields["x_min [m]"] == pytest.approx(data["x_min"], rel=1e-12)
+        assert fields[H_MIN_KEYS[2]] == pytest.approx(nodal, rel=1e-12)
+        assert nodal > data["h_min"]                       # 3.35 um against 3.30 um
+        assert fields[H_MIN_KEYS[3]] == pytest.approx(nodal / data["h_min"] - 1, rel=1e-9)
+        assert fields[H_MIN_NOTE] == 1.0
