@@ -291,3 +291,14 @@ def test_calibration_says_when_constants_act_only_together():
     assert fit.ci95 == {"mu_cc": None, "speed_constant": None}
     assert any("only together with speed_constant" in n for n in fit.notes)
     assert fit["estimates"] == fit.estimates
+
+
+def test_traction_loss_says_which_model_answered(capsys):
+    """auto's answer names the model that answered at the speed found (issue 20)."""
+    from webfem.traction import TractionLoss
+    out = traction_loss_speed(Case(), 0.1, "closed-form")
+    assert out.model_used == "closed-form" and out.models_used == ("closed-form",)
+    assert out.answered() == "closed-form" and out.to_dict()["model_used"] == "closed-form"
+    auto = TractionLoss(20.0, "auto", 0.1, 0.3, 5.0, (15.0, 25.0), 20, "found", "fe2d",
+                        ("fe1d", "fe2d"))
+    assert auto.answered() == "auto: fe2d; the scan also used fe1d"
