@@ -309,7 +309,12 @@ def calibration_chart(fit: dict, path, units: str = "si") -> Path:
     a.plot(lim, lim, "k-", lw=0.8)
     name = f"delta_T [{unit_label('tension', units)}]" if tension else "mu [-]"
     a.set_xlabel(f"measured {name}")
-    a.set_ylabel(f"predicted {name} ({fit['model']})")
+    try:   # auto: the models that answered the rows (a mapping may not have them)
+        used = list(dict.fromkeys(fit["models_used"]))
+    except KeyError:
+        used = []
+    model = fit["model"] + (f": {', '.join(used)}" if used and used != [fit["model"]] else "")
+    a.set_ylabel(f"predicted {name} ({model})")
     est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k], ROLES.get(k), units)}"
                     for k, v in fit["estimates"].items() if v is not None)
     a.set_title(est + " (95 %)", fontsize=8)
