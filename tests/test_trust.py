@@ -34,8 +34,8 @@ def _outcome(change, model):
                                     {"web.tension": 0.01, "roller.speed": 300.0}])
 def test_no_inadmissible_answer(model, change):
     """T = 300 N/m (T/R above E_b sigma/(2t) = 5000 Pa: no gap >= 0 carries the load),
-    T = 1e-6 N/m and viscosity 1e3 (beyond their keys' physical ranges), T = 0.01 N/m at
-    300 m/s (in range, a film thicker than R/100), speed 1e-7 m/s: every model
+    T = 1e-6 N/m (a film thicker than R/100), viscosity 1e3 (beyond its key's physical
+    range), T = 0.01 N/m at 300 m/s (a film thicker than R/100), speed 1e-7 m/s: every model
     either refuses with an input error or answers with h_min > 0, mu <= 1 and a wrap gap
     below R/100."""
     out = _outcome(change, model)

@@ -278,7 +278,7 @@ class Web(_Section):
     width: float = field(default=0.035, metadata=_num("m", 0.0, doc="web width L",
                                                           real=(1e-3, 10.0)))
     tension: float = field(default=80.0, metadata=_num("N/m", 0.0, doc="web tension T",
-                                                              real=(0.01, 1e5)))
+                                                              real=(None, 1e5)))
     speed: float = field(default=0.0, metadata=_num("m/s", 0.0, lo_open=False,
                                                      doc="web speed U_w", real=(None, 300.0)))
     thickness: float = field(default=70e-6, metadata=_num("m", 0.0, doc="web thickness t",

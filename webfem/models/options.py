@@ -162,9 +162,9 @@ class Options:
                 ", ".join(owners[:-1]) + " and " + owners[-1]
             takes = ", ".join(valid) if valid else "none"
             use = f"--model {owners[0]}" if where else f"model='{owners[0]}'"
-            return InputError(f"'{name}'{where} is an option of {whose}, not of {cls.model}: "
-                              f"give it with that model ({use}) or leave it out; "
-                              f"{cls.model} options: {takes}")
+            return InputError(f"unknown {cls.model} option '{name}'{where}: it is an "
+                              f"option of {whose}, not of {cls.model}: give it with that "
+                              f"model ({use}) or leave it out; {cls.model} options: {takes}")
         return unknown_name(f"{cls.model} option", name, valid, where)
 
     @classmethod
