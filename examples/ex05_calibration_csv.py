@@ -11,7 +11,8 @@ Prints the CSV's path, the fitted constants with their 95 % intervals and the re
 the last line is the fitted mu_cc (true value 0.35).
 
 Run from the repository root: ``python examples/ex05_calibration_csv.py``
-(the same fit from the shell: ``webfem calibrate FILE.csv --case cases/base.toml``).
+(the same fit from the shell: ``webfem calibrate FILE.csv --case cases/base.toml
+--model closed-form``; the command's default model is auto).
 """
 
 import csv

@@ -19,11 +19,11 @@ def test_defaults_are_paper_newsprint():
 
 
 @pytest.mark.parametrize("key,value,words", [
-    ("web.width", -0.01, ["web.width", "-0.01", "> 0"]),
-    ("web.tension", 0.0, ["web.tension", "> 0"]),
+    ("web.width", -0.01, ["web.width", "-0.01", ">= 0.001 and <= 10 [m]"]),
+    ("web.tension", 0.0, ["web.tension", "> 0 and <= 100000"]),
     ("roller.radius", float("nan"), ["roller.radius", "nan"]),
     ("wrap.angle_deg", 400.0, ["wrap.angle_deg", "400", "< 360"]),
-    ("wrap.angle_deg", 0.0, ["wrap.angle_deg", "> 0"]),
+    ("wrap.angle_deg", 0.0, ["wrap.angle_deg", ">= 0.1"]),
     ("roller.speed", -1.0, ["roller.speed", ">= 0"]),
     ("web.permeability", float("inf"), ["web.permeability", "inf"]),
     ("air.viscosity", "thick", ["air.viscosity", "not a number"]),
@@ -148,3 +148,104 @@ def test_numpy_numbers_accepted():
     import numpy as np
     c = Case().updated({"roller.speed": np.int64(3), "web.width": np.float32(0.5)})
     assert c.roller.speed == 3.0 and type(c.roller.speed) is float and c.web.width == 0.5
+
+
+# -- physical ranges (issue 20): absurd values refused by name, before any solver ----------
+
+#: A value of each numeric key that no real line has, and the words its message must hold.
+ABSURD = [
+    ("web.roughness", 1.0, ["web.roughness = 1.0", "<= 0.001 [m]", "'4 um'"]),
+    ("web.roughness", 1e30, ["web.roughness = 1e+30", ">= 1e-09 and <= 0.001 [m]"]),
+    ("friction.mu_cc", 1e30, ["friction.mu_cc = 1e+30", ">= 0 and <= 5"]),
+    ("roller.radius", 1e-30, ["roller.radius = 1e-30", ">= 0.001 and <= 10 [m]"]),
+    ("web.tension", 1e30, ["web.tension = 1e+30", "> 0 and <= 100000 [N/m]"]),
+    ("air.viscosity", 1e3, ["air.viscosity = 1000.0", "<= 0.001 [Pa s]"]),
+    ("web.acceleration", -1e30, ["web.acceleration = -1e+30", ">= -1000"]),
+    ("roller.diameter", 100.0, ["roller.diameter = 100.0", "<= 20 [m]"]),
+]
+
+
+@pytest.mark.parametrize("key,value,words", ABSURD, ids=[f"{k}={v:g}" for k, v, _ in ABSURD])
+def test_absurd_values_get_a_range_error(key, value, words):
+    with pytest.raises(CaseError) as err:
+        Case().updated({key: value})
+    msg = str(err.value)
+    for w in words:
+        assert w in msg, msg
+
+
+NUMERIC = [k for k in valid_keys() if isinstance(Case().get(k), float)
+           or k == "web.bending_stiffness"]
+
+
+@pytest.mark.parametrize("key", NUMERIC)
+def test_every_numeric_key_refuses_1e30_and_keeps_its_default(key):
+    """Every numeric key has a finite upper bound (1e30 is refused, naming key, value and
+    range) and its default lies inside its range."""
+    from webfem.sections import key_range, key_unit
+    with pytest.raises(CaseError) as err:
+        Case().updated({key: 1e30})
+    assert f"{key} = 1e+30 is out of range: {key_range(key)} [{key_unit(key)}]" in str(err.value)
+    assert "<=" in key_range(key) or "<" in key_range(key)
+
+
+def test_real_lines_are_accepted():
+    """The ends of what real lines have: 5 mm to 3 m wide, 0.01 to 100 m/s, 1 to 5000 N/m,
+    5 um to 3 mm thick, roughness to 100 um, radii 5 mm to 2 m, wraps to 359 deg."""
+    for values in ({"web.width": 0.005, "roller.speed": 0.01, "web.tension": 1.0,
+                    "web.thickness": 5e-6, "roller.radius": 0.005},
+                   {"web.width": 3.0, "roller.speed": 100.0, "web.tension": 5000.0,
+                    "web.thickness": 3e-3, "roller.radius": 2.0, "web.roughness": 100e-6,
+                    "roller.roughness": 100e-6, "wrap.angle_deg": 359.0,
+                    "friction.mu_cc": 1.5},
+                   {"web.speed": 100.0, "web.thickness": 10e-6}):
+        Case().updated(values)
+
+
+def test_physical_ranges_off_keeps_the_equations_bounds():
+    """Dimensional-analysis checks rescale keys beyond real lines; signs still hold."""
+    from webfem.sections import physical_ranges
+    with physical_ranges(False):
+        assert Case().updated({"web.modulus_md": 4.46e21}).web.modulus_md == 4.46e21
+        with pytest.raises(CaseError, match="web.width = -1.0 is out of range: must be > 0"):
+            Case().updated({"web.width": -1.0})
+    with pytest.raises(CaseError, match="web.modulus_md"):
+        Case().updated({"web.modulus_md": 4.46e21})
+
+
+def test_docs_inputs_lists_every_range():
+    """docs/inputs.md states each numeric key's range as the messages do."""
+    from pathlib import Path
+    from webfem.sections import ALIASES, key_range, key_unit
+    text = (Path(__file__).parent.parent / "docs" / "inputs.md").read_text()
+    for key in NUMERIC + list(ALIASES):
+        rng = key_range(key).removeprefix("must be ")
+        assert f"| `{key}` | {rng} | {key_unit(key)} |" in text, key
+
+
+# -- did-you-mean: only names that exist, where they exist (issue 20) ---------------------
+
+@pytest.mark.parametrize("text,words,never", [
+    ("web=80", ["'web'", "is a section, not a key", "web.KEY=VALUE", "tension"], "did you mean"),
+    ("roller.tension=3", ["not a key of [roller] but of [web]", "'web.tension'"], "did you mean 'roller"),
+    ("roller.width=0.1", ["but of [web]", "'web.width'"], "groove_width"),
+    ("air.speed=3", ["[roller] and [web]", "'roller.speed' or 'web.speed'"], None),
+    ("tension=3", ["did you mean 'web.tension'"], None),
+    ("web.tensoin=3", ["did you mean 'web.tension'"], None),
+    ("web.foo=3", ["the keys of [web]: width, tension"], "did you mean"),
+    ("rollr.radius=0.05", ["did you mean 'roller.radius'"], None),
+])
+def test_unknown_key_suggests_only_what_exists(text, words, never):
+    with pytest.raises(CaseError) as err:
+        parse_assignment(text)
+    msg = str(err.value)
+    for w in words:
+        assert w in msg, msg
+    assert never is None or never not in msg, msg
+
+
+def test_unknown_table_suggests_a_section(tmp_path):
+    p = tmp_path / "c.toml"
+    p.write_text("[webb]\nwidth = 0.03\n")
+    with pytest.raises(CaseError, match="unknown section 'webb' in .*c.toml; did you mean 'web'"):
+        load_case(p)

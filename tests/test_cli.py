@@ -37,7 +37,7 @@ def test_solve_set_override(capsys):
 def test_bad_input_exits_2_with_message(capsys):
     assert main(["solve", "cases/base.toml", "--set", "web.width=-2"]) == 2
     err = capsys.readouterr().err
-    assert "web.width = -2.0" in err and "> 0" in err
+    assert "web.width = -2.0" in err and ">= 0.001 and <= 10 [m]" in err
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])
@@ -406,3 +406,111 @@ def test_wheel_installs_and_runs_from_an_empty_folder(tmp_path):
     where = subprocess.run([py, "-c", "import webfem; print(webfem.__file__)"], cwd=empty,
                            env=env, capture_output=True, text=True, check=True).stdout
     assert str(venv) in where   # the wheel's copy, not the source tree
+
+
+def test_a_local_file_beats_the_bundled_name_and_says_so(tmp_path, monkeypatch, capsys):
+    """`webfem init base`, edit ./base.toml, `webfem solve base`: the edited file answers,
+    and stderr says which file a bare name stood for (issue 20)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["solve", "base", "--model", "closed-form", "--json"]) == 0
+    out = capsys.readouterr()
+    assert json.loads(out.out)["U"] == pytest.approx(20.0)
+    assert "case 'base' is the bundled base.toml" in out.err
+    assert main(["init", "base"]) == 0
+    path = tmp_path / "base.toml"
+    path.write_text(path.read_text().replace("speed = 20.0", "speed = 35.0", 1))
+    capsys.readouterr()
+    for name in ("base", "base.toml"):
+        assert main(["solve", name, "--model", "closed-form", "--json"]) == 0
+        out = capsys.readouterr()
+        assert json.loads(out.out)["U"] == pytest.approx(35.0)
+    assert main(["solve", "base", "--model", "closed-form"]) == 0
+    err = capsys.readouterr().err
+    assert "case 'base' is ./base.toml, the file here (not the bundled case" in err
+    assert main(["solve", "base", "--set", "web=80"]) == 2   # a failure stays one line
+    _one_line(capsys.readouterr().err)
+
+
+# -- sweeps and charts (issue 20) ------------------------------------------------------------
+
+def _chart_axes(monkeypatch):
+    """Capture the figures sweep_chart saves (their axes, titles and legend texts)."""
+    from webfem.io import charts
+    seen = []
+    real = charts._save
+
+    def save(fig, path):
+        ax = fig.axes[0]
+        seen.append({"xscale": ax.get_xscale(), "title": ax.get_title(),
+                     "legend": [t.get_text() for lg in fig.legends for t in lg.get_texts()]})
+        return real(fig, path)
+    monkeypatch.setattr(charts, "_save", save)
+    return seen
+
+
+def test_grooved_fe2d_sweep_draws_its_chart_without_the_closed_form(tmp_path, capsys,
+                                                                     monkeypatch):
+    seen = _chart_axes(monkeypatch)
+    assert main(["sweep", "base_grooved", "--model", "fe2d", "--num", "2", "--out",
+                 str(tmp_path), "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert "no closed-form curve beside fe2d" in err and "grooved roller" in err
+    assert (tmp_path / "base_grooved_fe2d.png").stat().st_size > 10_000
+    assert "no closed-form curve" in seen[-1]["title"]
+    assert not any("closed-form" in t for t in seen[-1]["legend"])
+
+
+def test_log_sweep_has_a_log_axis_and_auto_rows_name_their_model(tmp_path, capsys,
+                                                                  monkeypatch):
+    seen = _chart_axes(monkeypatch)
+    assert main(["sweep", "base", "--model", "closed-form", "--num", "4", "--log", "--out",
+                 str(tmp_path), "--quiet"]) == 0
+    assert seen[-1]["xscale"] == "log"
+    assert main(["sweep", "base", "--model", "closed-form", "--num", "4", "--out",
+                 str(tmp_path / "lin"), "--quiet"]) == 0
+    assert seen[-1]["xscale"] == "linear"
+    rows = list(csv.DictReader((tmp_path / "base_closed-form.csv").open()))
+    assert {r["model_used"] for r in rows} == {"closed-form"} and {r["why"] for r in rows} == {""}
+    assert main(["sweep", "base", "--num", "2", "--out", str(tmp_path), "--quiet"]) == 0
+    rows = list(csv.DictReader((tmp_path / "base_auto.csv").open()))
+    assert {r["model"] for r in rows} == {"auto"}
+    assert all(r["model_used"] in ("closed-form", "fe1d", "fe2d") and r["why"] for r in rows)
+    title = seen[-1]["title"]
+    assert title.startswith("base: auto: ") and rows[0]["model_used"] in title
+
+
+def test_sweep_into_another_sweeps_csv_says_what_it_does(tmp_path, capsys):
+    argv = ["sweep", "cases/base.toml", "--model", "closed-form", "--out", str(tmp_path),
+            "--quiet"]
+    assert main([*argv, "--num", "3"]) == 0
+    csv_path = tmp_path / "base_closed-form.csv"
+    before = csv_path.read_text()
+    capsys.readouterr()
+    assert main([*argv, "--num", "4"]) == 2               # would drop points: refused
+    line = _one_line(capsys.readouterr().err)
+    assert "holds another sweep" in line and "--replace" in line
+    assert csv_path.read_text() == before
+    assert main([*argv, "--num", "4", "--replace"]) == 0
+    assert "replacing its 3 rows of another sweep" in capsys.readouterr().err
+    assert len(list(csv.DictReader(csv_path.open()))) == 4
+    assert main([*argv, "--num", "4"]) == 0
+    assert "resuming this sweep: 4 of 4 points already there" in capsys.readouterr().err
+
+
+def test_vtu_states_the_reported_minimum_gap(tmp_path, capsys):
+    """The VTU's nodal h does not reach the reported h_min (it lies between nodes): its
+    field data give h_min, x_min, the nodal minimum and a note saying they differ."""
+    import meshio
+    from webfem.io.vtu import H_MIN_KEYS, H_MIN_NOTE, read_field_data
+    assert main(["solve", "base", "--model", "fe2d", "--json", "--vtu", str(tmp_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for part in ("web", "film"):
+        path = tmp_path / f"base_fe2d_{part}.vtu"
+        fields = read_field_data(path)
+        nodal = float(meshio.read(path).point_data["h [m]"].min())
+        assert fields["h_min [m]"] == pytest.approx(data["h_min"], rel=1e-12)
+        assert fields["x_min [m]"] == pytest.approx(data["x_min"], rel=1e-12)
+        assert fields[H_MIN_KEYS[2]] == pytest.approx(nodal, rel=1e-12)
+        assert nodal > data["h_min"]                       # 3.35 um against 3.30 um
+        assert fields[H_MIN_KEYS[3]] == pytest.approx(nodal / data["h_min"] - 1, rel=1e-9)
+        assert fields[H_MIN_NOTE] == 1.0

@@ -53,3 +53,78 @@ def test_idler_margin_falls_with_line_speed(tmp_path, capsys):
     assert (tmp_path / "idler_idler.png").stat().st_size > 1000
     with pytest.raises(webfem.InputError, match="no idler load"):
         margin_curve(webfem.Case(), [5.0], "closed-form")
+
+
+# -- one default model: auto, and every output says which model answered (issue 20) ------
+
+def test_every_case_command_defaults_to_auto():
+    """report, effects, idler, calibrate answer as solve, sweep and traction-loss do."""
+    from webfem.cli.main import build_parser
+    parser = build_parser()
+    for argv in (["solve", "base"], ["sweep", "base", "--out", "x"], ["report", "base",
+                 "--out", "x"], ["effects", "base"], ["idler", "idler"],
+                 ["traction-loss", "base", "--mu-min", "0.1"],
+                 ["calibrate", "m.csv", "--case", "base"]):
+        args = parser.parse_args(argv)
+        assert args.model == "auto" and args.model_given is False, argv
+    assert parser.parse_args(["report", "base", "--out", "x", "--model", "fe1d"]).model_given
+
+
+def _auto_as_fe1d(monkeypatch, calls):
+    """webfem.effects.solve with auto answering by fe1d (fast and the same whatever auto's
+    rules), recording the model each solve asked for."""
+    import dataclasses
+
+    import webfem.effects as effects
+    real = effects.solve
+
+    def solve(case, model="closed-form", **kw):
+        calls.append(model)
+        if model != "auto":
+            return real(case, model, **kw)
+        r = real(case, "fe1d")
+        return dataclasses.replace(r, summary=r.summary.replace(
+            model="auto", model_used="fe1d", why="test: fe1d is adequate -> fe1d"))
+    monkeypatch.setattr(effects, "solve", solve)
+
+
+def test_effects_with_auto_solve_every_variant_with_autos_choice(monkeypatch, capsys):
+    """The full case with auto; each effect switched off with the model auto chose for it
+    (fe1d here), so bending is not shown as changing nothing by a closed form."""
+    calls = []
+    _auto_as_fe1d(monkeypatch, calls)
+    table = effects_table(webfem.Case(), "auto")
+    assert calls == ["auto"] + ["fe1d"] * (len(table.rows) - 1)
+    assert table.model == "fe1d" and table.asked == "auto"
+    assert table.rows[1].effect == "bending" and table.rows[1].d_h_min != 0.0
+    text = table.text()
+    assert text.startswith("effects on fe1d (auto's choice for the full case: test: fe1d is "
+                           "adequate -> fe1d; every row solved with fe1d)")
+    assert table.to_dict()["asked"] == "auto" and "fe1d is adequate" in table.to_dict()["why"]
+    assert main(["effects", "base", "--json"]) == 0   # the command's default is auto
+    data = json.loads(capsys.readouterr().out)
+    assert data["asked"] == "auto" and data["model"] == "fe1d"
+
+
+def test_idler_table_header_csv_and_model_per_row(tmp_path, capsys):
+    """The idler table has a header naming columns and units; --out writes the CSV beside
+    the chart; a curve auto answered with several models says which at each speed."""
+    import csv
+
+    from webfem.idler import MarginCurve
+    assert main(["idler", "idler", "--model", "closed-form", "--num", "3",
+                 "--out", str(tmp_path)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1].split() == ["line", "speed", "required", "available", "margin", "verdict"]
+    assert lines[2].split() == ["[m/s]", "[N/m]", "[N/m]", "[-]"]
+    rows = list(csv.DictReader((tmp_path / "idler_idler.csv").open()))
+    assert list(rows[0]) == list(MarginCurve.COLUMNS) and len(rows) == 3
+    assert {r["model_used"] for r in rows} == {"closed-form"}
+    assert float(rows[0]["speed"]) == 1.0 and (tmp_path / "idler_idler.png").exists()
+    curve = MarginCurve("auto", (1.0, 2.0, 3.0), (1.0,) * 3, (2.0, 1.5, 0.5), (2.0, 1.5, 0.5),
+                        (0.3,) * 3, (True,) * 3, ("fe1d", "fe2d", "fe2d"))
+    assert curve.answered() == "auto: fe1d at 1, fe2d at 2 speeds"
+    assert [r["model_used"] for r in curve.rows()] == ["fe1d", "fe2d", "fe2d"]
+    from webfem.cli.idler import _table
+    text = _table(curve, "si").splitlines()
+    assert text[1].split()[-1] == "model" and text[3].split()[-1] == "fe1d"

@@ -236,3 +236,42 @@ def test_cli_bad_case_file_exits_2_without_traceback(tmp_path, capsys, command, 
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
     for w in words:
         assert w in err
+
+
+# -- model options: a name of another model says whose it is (issue 20) -------------------
+
+@pytest.mark.parametrize("model,name,words,never", [
+    ("fe1d", "symmetry", ["unknown fe1d option 'symmetry' (--opt): it is an option of fe2d "
+                          "and auto, not of fe1d",
+                          "--model fe2d"], "did you mean"),
+    ("closed-form", "level", ["unknown closed-form option 'level' (--opt): it is an option "
+                              "of fe1d, fe2d and auto, not of closed-form",
+                              "closed-form options: n_points"], "did you mean"),
+    ("fe2d", "quantity", ["is an option of auto, not of fe2d"], None),
+    ("fe1d", "nodes", ["'nodes' (--opt) is set from Python only"], "did you mean"),
+    ("fe1d", "levle", ["unknown fe1d option 'levle' (--opt); did you mean 'level'?"], None),
+])
+def test_option_of_another_model_names_its_model(model, name, words, never):
+    from webfem.models.registry import model_spec
+    with pytest.raises(InputError) as err:
+        model_spec(model).options.from_strings([f"{name}=1"])
+    msg = str(err.value)
+    for w in words:
+        assert w in msg, msg
+    assert never is None or never not in msg, msg
+
+
+def test_option_of_another_model_through_the_api():
+    with pytest.raises(InputError, match=r"unknown fe1d option 'symmetry': it is an option "
+                                         r"of fe2d and auto, not of fe1d: give it with that "
+                                         r"model \(model='fe2d'\)"):
+        webfem.solve(Case(), model="fe1d", symmetry=False)
+
+
+def test_cli_set_a_section_and_opt_of_another_model(capsys):
+    assert main(["solve", "cases/base.toml", "--set", "web=80"]) == 2
+    err = capsys.readouterr().err
+    assert "'web' (--set) is a section, not a key" in err and "did you mean" not in err
+    assert main(["solve", "cases/base.toml", "--model", "fe1d", "--opt", "symmetry=false"]) == 2
+    err = capsys.readouterr().err
+    assert "an option of fe2d and auto, not of fe1d" in err and "did you mean" not in err

@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 
 from webfem import Case
 from webfem.case import valid_keys
+from webfem.sections import physical_ranges
 from webfem.models import closed, fe1d, fe2d
 from webfem.physics.contact import load_ratio
 from webfem.physics.friction import local_friction, mu_film
@@ -90,7 +91,8 @@ units = st.tuples(st.floats(1e-3, 1e3), st.floats(1e-3, 1e3), st.floats(1e-3, 1e
 @given(points, units)
 def test_closed_form_is_unit_invariant(values, scale):
     a = closed.solve(Case().updated(values))
-    b = closed.solve(rescale(Case().updated(values), *scale))
+    with physical_ranges(False):   # a case in other units is no real line (E_m x 1e12)
+        b = closed.solve(rescale(Case().updated(values), *scale))
     L = scale[0]
     for key in ("h_inlet", "h_center", "h_outlet", "h_c"):
         assert b[key] == pytest.approx(a[key] * L, rel=1e-9, abs=1e-30)
@@ -104,7 +106,8 @@ def test_closed_form_is_unit_invariant(values, scale):
 def test_fe1d_is_unit_invariant(scale):
     case = Case().updated({"roller.speed": 30.0, "web.bending_stiffness": 1e-4})
     a = fe1d.solve(case)
-    b = fe1d.solve(rescale(case, *scale))
+    with physical_ranges(False):   # a case in other units is no real line (E_m x 1e12)
+        b = fe1d.solve(rescale(case, *scale))
     for key in ("h_center", "h_min", "h_outlet"):
         assert b[key] == pytest.approx(a[key] * scale[0], rel=1e-7)
     assert b["mu"] == pytest.approx(a["mu"], rel=1e-7)

@@ -101,3 +101,22 @@ def test_screenshot_is_not_blank(page, tmp_path):
     with Image.open(shot) as im:
         colours = im.convert("L").getextrema()
     assert colours[0] < 80 and colours[1] > 200   # text on a light page
+
+
+def test_default_report_says_which_model_answered_and_why(tmp_path):
+    """No --model: the page is base_auto.html, shows the model auto chose and its reason,
+    and never claims the model was asked for by name (issue 20)."""
+    import webfem
+    assert main(["report", "base", "--out", str(tmp_path), "--quiet"]) == 0
+    page = tmp_path / "base_auto.html"
+    html = page.read_text()
+    solved = webfem.solve(webfem.load_case(ROOT / "cases" / "base.toml"), model="auto")
+    used, why = solved.summary.model_used, solved.summary.why
+    from html import escape
+    assert "asked for by name" not in html
+    assert f"answered by <b>{used}</b>" in html and escape(why) in html
+    assert "the default of webfem report (--model auto)" in html
+    assert f"webfem report: base (auto: {used})" in html or used == "auto"
+    assert main(["report", "base", "--out", str(tmp_path), "--model", "closed-form"]) == 0
+    named = (tmp_path / "base_closed-form.html").read_text()
+    assert "asked for by name (--model closed-form)" in named

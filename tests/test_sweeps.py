@@ -187,12 +187,50 @@ def test_killed_sweep_resumes(case_file, tmp_path):
     assert leftovers(csv_path.parent) == []
 
 
-def test_changed_sweep_starts_over(tmp_path):
+def test_changed_sweep_is_refused_unless_replace(tmp_path):
+    """A sweep that would drop points of the CSV's sweep is refused, saying what differs,
+    and the file is left as it was; with replace=True it starts over in the file, keeping
+    the converged points the two share (same model, options and cases: the same answers)."""
     out = tmp_path / "s.csv"
     run(small(), "fe1d", out)
+    before = out.read_bytes()
+    with pytest.raises(InputError, match=r"s.csv holds another sweep \(2 of its 6 points are "
+                                         r"not in this sweep.*--replace"):
+        run(small(values=(30.0, 34.0, 37.0)), "fe1d", out)
+    assert out.read_bytes() == before
+    with pytest.raises(InputError, match=r"model 'fe1d', not 'closed-form'"):
+        run(small(), "closed-form", out)
     calls, progress = counter()
-    rows = run(small(values=(30.0, 34.0, 37.0)), "fe1d", out, progress=progress)
-    assert len(calls) == 6 and [r["value"] for r in rows[:3]] == [30.0, 34.0, 37.0]
+    told = []
+    rows = run(small(values=(30.0, 34.0, 37.0)), "fe1d", out, progress=progress,
+               replace=True, notice=told.append)
+    assert [r["value"] for r in rows[:3]] == [30.0, 34.0, 37.0] and len(rows) == 6
+    assert len(calls) == 2                         # only the two points at 37
+    assert len(told) == 1 and "replacing its 6 rows of another sweep" in told[0]
+    assert "keeping the 4 converged points" in told[0]
+
+
+def test_larger_sweep_extends_and_same_sweep_resumes_saying_so(tmp_path):
+    """More values (every old point kept) extend the CSV; the same sweep resumes; each says
+    what it does."""
+    out = tmp_path / "s.csv"
+    run(small(values=(30.0, 38.0)), "fe1d", out)
+    told, (calls, progress) = [], counter()
+    rows = run(small(), "fe1d", out, progress=progress, notice=told.append)
+    assert len(calls) == 2 and [r["value"] for r in rows[:3]] == [30.0, 34.0, 38.0]
+    assert told and "extending the sweep it holds" in told[0] and "keeping its 4" in told[0]
+    told.clear()
+    run(small(), "fe1d", out, notice=told.append)
+    assert told == [f"{out}: resuming this sweep: 6 of 6 points already there, nothing to "
+                    "solve"]
+
+
+def test_a_csv_without_its_sidecar_is_not_replaced(tmp_path):
+    out = tmp_path / "s.csv"
+    out.write_text("my,own,table\n1,2,3\n")
+    with pytest.raises(InputError, match="holds another sweep .*columns"):
+        run(small(), "closed-form", out)
+    assert out.read_text() == "my,own,table\n1,2,3\n"
 
 
 def test_failed_points_are_retried(serial, tmp_path):

@@ -123,7 +123,7 @@ def test_calibration_cli_and_file(tmp_path, capsys):
                            for r in rows))
     assert len(read_measurements(p)) == 10
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json", "--out",
-                 str(tmp_path)]) == 0
+                 str(tmp_path), "--model", "closed-form"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert abs(out["estimates"]["mu_cc"] - 0.33) <= out["ci95"]["mu_cc"]
     assert (tmp_path / "measured_calibration.png").stat().st_size > 10_000
@@ -267,7 +267,7 @@ def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
     loads = calibrate(read_measurements(p), Case(), model="closed-form")
     assert loads.identified == {"mu_cc": False, "speed_constant": False}
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--json", "--set",
-                 "model.physics=paper"]) == 0
+                 "model.physics=paper", "--model", "closed-form"]) == 0
 
     def refuse(name):
         raise AssertionError(f"{name} in JSON output")
@@ -278,7 +278,7 @@ def test_calibration_says_when_C_is_not_identified(tmp_path, capsys):
     assert any("speed_constant cannot be identified" in n and "roller speeds" in n
                for n in out["notes"])
     assert main(["calibrate", str(p), "--case", "cases/base.toml", "--set",
-                 "model.physics=paper"]) == 0
+                 "model.physics=paper", "--model", "closed-form"]) == 0
     text = capsys.readouterr().out
     assert "not identified" in text and "+- 0 " not in text and "inf" not in text
 
@@ -293,3 +293,14 @@ def test_calibration_says_when_constants_act_only_together():
     assert fit.ci95 == {"mu_cc": None, "speed_constant": None}
     assert any("only together with speed_constant" in n for n in fit.notes)
     assert fit["estimates"] == fit.estimates
+
+
+def test_traction_loss_says_which_model_answered(capsys):
+    """auto's answer names the model that answered at the speed found (issue 20)."""
+    from webfem.traction import TractionLoss
+    out = traction_loss_speed(Case(), 0.1, "closed-form")
+    assert out.model_used == "closed-form" and out.models_used == ("closed-form",)
+    assert out.answered() == "closed-form" and out.to_dict()["model_used"] == "closed-form"
+    auto = TractionLoss(20.0, "auto", 0.1, 0.3, 5.0, (15.0, 25.0), 20, "found", "fe2d",
+                        ("fe1d", "fe2d"))
+    assert auto.answered() == "auto: fe2d; the scan also used fe1d"

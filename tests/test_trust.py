@@ -19,23 +19,26 @@ BASE = Case()
 PAPER = Case().updated({"model.physics": "paper"})
 
 
-def _outcome(case, model):
-    """The result, or the exception a user would see."""
+def _outcome(change, model):
+    """The result, or the exception a user would see (a value beyond the physical range of
+    its key is refused when the case is made)."""
     try:
-        return webfem.solve(case, model=model)
+        return webfem.solve(BASE.updated(change), model=model)
     except (InputError, ConvergenceError) as err:
         return err
 
 
 @pytest.mark.parametrize("model", ["closed-form", "fe1d", "fe2d", "auto"])
 @pytest.mark.parametrize("change", [{"web.tension": 300.0}, {"web.tension": 1e-6},
-                                    {"air.viscosity": 1e3}, {"roller.speed": 1e-7}])
+                                    {"air.viscosity": 1e3}, {"roller.speed": 1e-7},
+                                    {"web.tension": 0.01, "roller.speed": 300.0}])
 def test_no_inadmissible_answer(model, change):
     """T = 300 N/m (T/R above E_b sigma/(2t) = 5000 Pa: no gap >= 0 carries the load),
-    T = 1e-6 N/m and viscosity 1e3 (film thicker than R/100), speed 1e-7 m/s: every model
+    T = 1e-6 N/m (a film thicker than R/100), viscosity 1e3 (beyond its key's physical
+    range), T = 0.01 N/m at 300 m/s (a film thicker than R/100), speed 1e-7 m/s: every model
     either refuses with an input error or answers with h_min > 0, mu <= 1 and a wrap gap
     below R/100."""
-    out = _outcome(BASE.updated(change), model)
+    out = _outcome(change, model)
     if isinstance(out, Exception):
         assert isinstance(out, InputError), out
         assert "\n" not in str(out)

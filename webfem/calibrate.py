@@ -39,8 +39,10 @@ from scipy.stats import t as student_t
 
 from .api import solve
 from .case import Case, valid_keys
+from .effects import answered_by
 from .errors import InputError, ValidityWarning
 from .models.closed import case_arrays, evaluate
+from .models.registry import make_options
 from .physics.friction import delta_T_from_mu, friction_for
 
 __all__ = ["Calibration", "read_measurements", "calibrate", "COLUMN_ALIASES"]
@@ -83,6 +85,8 @@ class Calibration:
     message: str
     cases: tuple
     notes: tuple = ()
+    #: The model that answered each row (auto chooses per row, once: see :func:`calibrate`).
+    models_used: tuple = ()
 
     def __getitem__(self, key: str):
         if not isinstance(key, str) or key not in {f.name for f in dataclasses.fields(self)}:
@@ -111,7 +115,8 @@ class Calibration:
             return value
 
         keys = ("model", "measured", "estimates", "stderr", "ci95", "identified", "rms",
-                "dof", "converged", "message", "observed", "predicted", "residuals")
+                "dof", "converged", "message", "observed", "predicted", "residuals",
+                "models_used")
         out = {k: plain(getattr(self, k), k) for k in keys}
         out["notes"] = notes
         return out
@@ -285,16 +290,23 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
     obs = np.array([float(r[measured]) for r in rows])
     web_sigma = case.web.roughness
     gaps: dict = {}
+    # auto chooses a row's model at the first sigma; later sigmas (--fit-sigma) keep it, so
+    # the fit's objective never jumps where auto would change its mind
+    chosen: list = []
+    base_options = make_options(model, options, **values)
 
     def gap_samples(sigma):
         key = round(float(sigma), 15)
         if key not in gaps:
             out = []
-            for c in cases:
+            for i, c in enumerate(cases):
+                # a row's first solve asks for ``model``; later ones the model that answered
+                name, opts = chosen[i] if len(chosen) > i else (model, base_options)
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", ValidityWarning)
-                    r = solve(c.updated({"web.roughness": sigma}), model=model,
-                              options=options, **values)
+                    r = solve(c.updated({"web.roughness": sigma}), model=name, options=opts)
+                if len(chosen) <= i:
+                    chosen.append(answered_by(r, model, base_options))
                 out.append(_wrap_samples(r))
             gaps[key] = out
         return gaps[key]
@@ -356,4 +368,5 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
         stderr=se, ci95=half, identified={n: n not in why for n in names},
         observed=obs, predicted=obs + res, residuals=res,
         rms=float(np.sqrt(np.mean(res**2))), dof=dof, converged=bool(fit.success),
-        message=str(fit.message), cases=tuple(cases), notes=tuple(notes))
+        message=str(fit.message), cases=tuple(cases), notes=tuple(notes),
+        models_used=tuple(name for name, _ in chosen) if chosen else (model,) * len(cases))

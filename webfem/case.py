@@ -20,7 +20,7 @@ Examples
 >>> Case().updated({"web.width": -1})
 Traceback (most recent call last):
 ...
-webfem.errors.InputError: web.width = -1.0 is out of range: must be > 0 [m]
+webfem.errors.InputError: web.width = -1.0 is out of range: must be >= 0.001 and <= 10 [m]
 """
 
 from __future__ import annotations

@@ -12,6 +12,11 @@ Examples
 ['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction']
 >>> table.not_carried                  # the closed form cannot carry these
 ('bending', 'slip', 'isothermal-permeation')
+
+With ``model="auto"`` the full case is solved with auto, and every variant with the model
+auto chose for it (and that model's options): a variant answered by another model would
+mix a model change into the effect's change, and the closed form, which cannot carry
+bending, would show bending as changing nothing.
 """
 
 from __future__ import annotations
@@ -20,10 +25,33 @@ from dataclasses import dataclass
 
 from .api import solve
 from .case import Case
-from .models.registry import make_options
+from .models.options import fe_options
+from .models.registry import make_options, model_spec
 from .physics.effects import SWITCH_OFF, included
 
-__all__ = ["EffectRow", "EffectsTable", "effects_table"]
+__all__ = ["EffectRow", "EffectsTable", "effects_table", "answered_by"]
+
+
+def answered_by(result, model: str, options):
+    """``(name, options)`` of the model that answered ``result`` when ``model`` was asked
+    with ``options``: the model itself, or the one auto chose, with the options it solved
+    with (the result's own, else the FE options the auto options carry).
+
+    >>> import webfem
+    >>> r = webfem.solve(webfem.Case().updated({"roller.speed": 2.0}), model="auto")
+    >>> answered_by(r, "auto", None)[0] == r.summary.model_used
+    True
+    """
+    used = result.summary.model_used or result.summary.model
+    if used == model:
+        return model, make_options(model, options)
+    kind = model_spec(used).options
+    own = getattr(result.diagnostics, "options", None)
+    if isinstance(own, kind):
+        return used, own
+    if used == "closed-form":
+        return used, kind()
+    return used, fe_options(make_options(model, options), kind)
 
 
 @dataclass(frozen=True)
@@ -50,21 +78,29 @@ class EffectRow:
 @dataclass(frozen=True)
 class EffectsTable:
     """The rows of :func:`effects_table`, the model that answered, and the effects of the
-    case that this model cannot carry (switching them off changes nothing there)."""
+    case that this model cannot carry (switching them off changes nothing there).
+
+    ``asked``: the model asked for (``"auto"``, or ``model`` itself); ``why``: auto's reason
+    for its choice on the full case (None when a model was named)."""
 
     model: str
     rows: tuple[EffectRow, ...]
     not_carried: tuple[str, ...] = ()
+    asked: str = ""
+    why: str | None = None
 
     def to_dict(self) -> dict:
         return {"model": self.model, "rows": [r.to_dict() for r in self.rows],
-                "not_carried": list(self.not_carried)}
+                "not_carried": list(self.not_carried), "asked": self.asked or self.model,
+                "why": self.why}
 
     def text(self) -> str:
         """A fixed-width table: how much switching each effect off moves the answer."""
         idler = self.rows[0].slip_margin is not None
-        lines = [f"effects on {self.model}: the answer with every effect, then with each "
-                 "one switched off (change relative to all included)",
+        chosen = (f" (auto's choice for the full case: {self.why}; every row solved with "
+                  f"{self.model})" if self.asked and self.asked != self.model else "")
+        lines = [f"effects on {self.model}{chosen}: the answer with every effect, then with "
+                 "each one switched off (change relative to all included)",
                  f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
                  f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>10}"
                  + (f"{'slip margin':>13}" if idler else "")]
@@ -100,6 +136,10 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
     effects = included(case)
     total = 1 + len(effects)
     base = solve(case, model, options=opts)
+    asked, why = model, base.summary.why
+    # the variants go to the model that answered the full case (auto's choice), so that a
+    # row's change is the effect's, not a change of model
+    model, opts = answered_by(base, model, opts)
     carried = tuple(base.summary.effects)
     rows = [EffectRow("all included", {}, base["h_center"], base["h_min"], base["mu"],
                       0.0, 0.0, 0.0, base["slip_margin"])]
@@ -116,5 +156,5 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
         if progress:
             progress(i, total)
     missing = tuple(e for e in effects if e not in carried)
-    used = base.summary.model_used or base.summary.model
-    return EffectsTable(used, tuple(rows), missing)
+    return EffectsTable(model, tuple(rows), missing, asked=asked,
+                        why=why if asked != model else None)

@@ -28,7 +28,9 @@ __all__ = ["MarginCurve", "margin_curve"]
 @dataclass(frozen=True)
 class MarginCurve:
     """Line speeds [m/s] and, at each, delta_T required and available [N/m], the slip margin
-    (available / required), mu at the onset of slip, and whether the solve converged."""
+    (available / required), mu at the onset of slip, whether the solve converged and the
+    model that answered (``models_used``: auto may choose per speed; ``model``: the one
+    model that answered every speed, else the model asked for)."""
 
     model: str
     speeds: tuple[float, ...]
@@ -37,9 +39,34 @@ class MarginCurve:
     slip_margin: tuple[float, ...]
     mu_onset: tuple[float, ...]
     converged: tuple[bool, ...]
+    models_used: tuple[str, ...] = ()
+
+    #: The columns of :meth:`rows` (and of ``webfem idler --out``'s CSV), SI units.
+    COLUMNS = ("speed", "delta_T_required", "delta_T_available", "slip_margin", "mu_onset",
+               "converged", "model_used")
 
     def to_dict(self) -> dict:
         return dict(self.__dict__)
+
+    def rows(self) -> list[dict]:
+        """One row per line speed, keyed by :attr:`COLUMNS` (``speed`` [m/s] is the line
+        speed, U_r = U_w)."""
+        used = self.models_used or (self.model,) * len(self.speeds)
+        return [dict(zip(self.COLUMNS, values)) for values in zip(
+            self.speeds, self.delta_T_required, self.delta_T_available, self.slip_margin,
+            self.mu_onset, self.converged, used)]
+
+    def answered(self) -> str:
+        """Which model answered: ``fe1d``, or for auto ``auto: fe2d at every speed`` /
+        ``auto: fe1d at 3, fe2d at 17 speeds``."""
+        used = [m for m in self.models_used if m]
+        if not used or set(used) == {self.model}:
+            return self.model
+        counts = {m: used.count(m) for m in dict.fromkeys(used)}
+        if len(counts) == 1:
+            return f"{self.model}: {used[0]} at every speed"
+        return f"{self.model}: " + ", ".join(f"{m} at {n}" for m, n in counts.items()) \
+            + " speeds"
 
     def slip_speed(self) -> float | None:
         """The first line speed where the margin falls below 1 (linear interpolation), or
@@ -66,6 +93,7 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
     results = list(solve_along(cases, model, options, **values))
     pick = {k: tuple(float(r[k]) for r in results) for k in
             ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")}
-    used = results[0].summary.model_used or results[0]["model"]
-    return MarginCurve(used, tuple(speeds), converged=tuple(bool(r["converged"])
-                                                           for r in results), **pick)
+    used = tuple(r.summary.model_used or r["model"] for r in results)
+    return MarginCurve(model, tuple(speeds),
+                       converged=tuple(bool(r["converged"]) for r in results),
+                       models_used=used, **pick)

@@ -45,6 +45,9 @@ class TractionLoss:
     ``speed`` [m/s] is None when mu never reaches ``mu_min`` in the scanned range or never
     falls below it; ``bracket`` the scan interval holding the crossing; ``evaluations`` the
     number of solves; ``message`` says what was found. ``out["speed"]`` reads a field too.
+    ``model_used``: the model that answered at the speed found (else at the peak): auto's
+    choice there, or ``model`` itself; ``models_used``: every model that answered a solve
+    of the search, in the order first used.
     """
 
     speed: float | None
@@ -55,6 +58,16 @@ class TractionLoss:
     bracket: tuple[float, float] | None
     evaluations: int
     message: str
+    model_used: str | None = None
+    models_used: tuple[str, ...] = ()
+
+    def answered(self) -> str:
+        """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
+        if self.model_used in (None, self.model):
+            return self.model
+        others = [m for m in self.models_used if m != self.model_used]
+        return (f"{self.model}: {self.model_used}"
+                + (f"; the scan also used {', '.join(others)}" if others else ""))
 
     def __getitem__(self, key: str):
         if not isinstance(key, str) or key not in self.keys():
@@ -75,6 +88,11 @@ class TractionLoss:
                 value = None
             out[key] = value
         return out
+
+
+def _used(result) -> str:
+    """The model that answered ``result`` (auto's choice, or the model itself)."""
+    return result["model_used"] or result["model"]
 
 
 def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1):
@@ -179,9 +197,10 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     results = _scan(case, speeds, model, opts, workers=workers)
     mu = np.array([r["mu"] for r in results], float)
     i_peak = int(np.nanargmax(mu))
+    used = list(dict.fromkeys(_used(r) for r in results))
     found = dict(model=model, mu_min=float(mu_min), mu_peak=float(mu[i_peak]),
                  speed_peak=float(speeds[i_peak]), evaluations=n_scan, bracket=None,
-                 speed=None)
+                 speed=None, model_used=_used(results[i_peak]), models_used=tuple(used))
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
             f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
@@ -201,7 +220,9 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         return cache[u]["mu"] - mu_min
 
     speed = float(brentq(f, a, b, xtol=xtol * a, rtol=1e-10))
-    found.update(speed=speed, bracket=(a, b))
+    at = cache[min(cache, key=lambda v: abs(v - speed))]
+    used += [m for m in dict.fromkeys(_used(r) for r in cache.values()) if m not in used]
+    found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))
     return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s")
 
 

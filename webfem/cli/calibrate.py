@@ -17,7 +17,7 @@ def add_parser(subparsers) -> None:
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
     p.add_argument("data", help="CSV (UTF-8): roller_speed, tension, wrap_deg (or any case "
                                 "key) and delta_T [N/m] or mu per row")
-    add_case_arguments(p, positional=False, default_model="closed-form")
+    add_case_arguments(p, positional=False)
     p.add_argument("--fit-sigma", action="store_true", help="also fit the web roughness sigma")
     p.add_argument("--json", action="store_true",
                    help="estimates, errors, residuals and notes as JSON")
@@ -49,7 +49,11 @@ def run(args) -> int:
     if args.json:
         print_json(fit.to_dict())
     else:
-        print(f"webfem calibrate ({fit.model}, {len(rows)} rows of {fit.measured}):")
+        used = list(dict.fromkeys(fit.models_used))
+        answered = (fit.model if used in ([], [fit.model]) else f"{fit.model}: " + ", ".join(
+            f"{m} for {n} row{'s' if n > 1 else ''}" for m in used
+            for n in [fit.models_used.count(m)]))
+        print(f"webfem calibrate ({answered}, {len(rows)} rows of {fit.measured}):")
         for name in fit.estimates:
             print(f"  {name:15s} = {_pm(fit, name, args.units)}")
         if fit.measured == "delta_T":   # the residuals are tension differences

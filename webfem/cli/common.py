@@ -37,6 +37,7 @@ from ..progress import iterations_left, reporting
 
 __all__ = ["HELP_FORMATTER", "DEFAULT_MODEL", "UNITS_HELP", "add_case_arguments",
            "add_units_argument", "add_quiet_argument", "bundled_cases", "case_path",
+           "CaseArgument", "announce_case",
            "options_epilog", "case_from", "overrides", "positive_int", "speed_value",
            "model_options", "output_folder", "print_json", "Progress", "Ticker",
            "progress_line", "error_line"]
@@ -54,28 +55,73 @@ def bundled_cases() -> dict[str, Path]:
             if p.name.endswith(".toml")}
 
 
+class CaseArgument(str):
+    """The path of a case as the command line resolved it; ``note`` says which file a bare
+    name (``base``) stands for, for the user to read (None for a path given as such)."""
+
+    note: str | None = None
+
+    def __new__(cls, path: str, note: str | None = None):
+        self = super().__new__(cls, path)
+        self.note = note
+        return self
+
+
 def case_path(text: str) -> str:
-    """An argparse type: a case file as given, or the path of a bundled case when ``text``
-    names one (``base``, ``base.toml``) and no such file exists here."""
-    if Path(text).exists():
-        return text
+    """An argparse type: a case file as given; for a bare name (``base`` or ``base.toml``,
+    no folder) the file of that name here, else the bundled case of that name.
+
+    A file here comes first, so that a case copied with ``webfem init base`` and edited is
+    what ``webfem solve base`` reads; either way the returned :class:`CaseArgument` carries
+    a note saying which file was read (printed by :func:`case_from`)."""
     name = text.removesuffix(".toml")
-    if "/" not in text and os.sep not in text:
-        path = bundled_cases().get(name)
-        if path is not None:
-            return str(path)
-    return text   # load_case names the missing file
+    bare = "/" not in text and os.sep not in text and (os.altsep or "/") not in text
+    if Path(text).is_file():   # a file named as such: what was asked for
+        return CaseArgument(text)
+    if bare:
+        here = Path(f"{name}.toml")
+        bundled = bundled_cases().get(name)
+        if here.is_file():
+            return CaseArgument(str(here), f"case '{text}' is ./{here}, the file here"
+                                + (" (not the bundled case of that name)" if bundled
+                                   else ""))
+        if bundled is not None:
+            return CaseArgument(str(bundled), f"case '{text}' is the bundled {bundled.name} "
+                                f"({bundled}); no {name}.toml here (`webfem init {name}` "
+                                "copies it to edit)")
+    return CaseArgument(text)   # load_case names the missing file
+
+
+def announce_case(args) -> None:
+    """Say on stderr which file a bare case name stood for (once per command), after the
+    case was read whole: an input error stays the one line of a failure."""
+    for attr in ("case",):
+        note = getattr(getattr(args, attr, None), "note", None)
+        if note and not getattr(args, "_case_announced", False):
+            print(f"webfem: {note}", file=sys.stderr)
+            args._case_announced = True
+
 
 #: Keeps the options listed in the epilog one per line.
 HELP_FORMATTER = argparse.RawDescriptionHelpFormatter
 
 
+class _ModelAction(argparse.Action):
+    """``--model NAME``: stores the name and notes that it was given (``model_given``), so
+    an output can say "asked for by name" only when it was."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        namespace.model_given = True
+
+
 def add_case_arguments(parser: argparse.ArgumentParser, *, positional: bool = True,
-                       model: bool = True, default_model: str = "closed-form") -> None:
+                       model: bool = True, default_model: str = DEFAULT_MODEL) -> None:
     """The case file or bundled name (positional, or ``--case`` when ``positional`` is
     False), ``--set``, and with ``model`` also ``--model`` (the registry's names, default
-    ``default_model``; :data:`DEFAULT_MODEL` for the commands that answer an engineer's
-    question: solve, sweep, traction-loss) and ``--opt``."""
+    ``default_model``: :data:`DEFAULT_MODEL` for every command that answers a question
+    about a case, so that they all answer it alike; ``args.model_given`` says whether it
+    was given) and ``--opt``."""
     if positional:
         parser.add_argument("case", type=case_path,
                             help="case TOML file, or the name of a bundled case (`webfem "
@@ -92,8 +138,10 @@ def add_case_arguments(parser: argparse.ArgumentParser, *, positional: bool = Tr
                        "summary says which answered and why",
                "closed-form": "the paper's Eq. 21"}.get(default_model, "")
         parser.add_argument("--model", default=default_model, choices=list(MODELS),
+                            action=_ModelAction,
                             help=f"model to use (default: {default_model}"
                                  + (f", {why})" if why else ")"))
+        parser.set_defaults(model_given=False)
         parser.add_argument("--opt", action="append", metavar="NAME=VALUE",
                             help="model option, e.g. --opt method=picard --opt level=2 "
                                  "(repeatable; each model's options are listed below)")
@@ -163,8 +211,11 @@ def overrides(args) -> dict:
 
 
 def case_from(args) -> Case:
-    """The case of ``args.case`` with the ``--set`` overrides."""
-    return load_case(args.case, overrides(args))
+    """The case of ``args.case`` with the ``--set`` overrides; a bare name's file is
+    announced on stderr (:func:`announce_case`)."""
+    case = load_case(args.case, overrides(args))
+    announce_case(args)
+    return case
 
 
 def model_options(args, model: str | None = None) -> Options:

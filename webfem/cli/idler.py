@@ -24,7 +24,11 @@ def add_parser(subparsers) -> None:
     p.add_argument("--max-speed", type=speed_value, default=20.0,
                    help="to (m/s or with a unit; default 20 m/s)")
     p.add_argument("--num", type=positive_int, default=20, help="speeds (default 20)")
-    p.add_argument("--out", metavar="DIR", help="write CASE_idler.png into DIR")
+    p.add_argument("--out", metavar="DIR",
+                   help="write CASE_idler.csv (SI: speed, delta_T_required, "
+                        "delta_T_available, slip_margin, mu_onset, converged, model_used; "
+                        "with --units metric|us also a converted copy) and CASE_idler.png "
+                        "into DIR")
     p.add_argument("--json", action="store_true", help="the curve as JSON (SI units)")
     add_units_argument(p)
 
@@ -41,24 +45,44 @@ def run(args) -> int:
     if args.json:
         print_json(curve.to_dict() | {"slip_speed": curve.slip_speed()})
     else:
-        units = args.units
-        print(f"idler slip check ({curve.model}): line speed [{unit_label('speed', units)}], "
-              f"delta_T required and available [{unit_label('tension', units)}], margin")
-        for u, r, a, m in zip(curve.speeds, curve.delta_T_required, curve.delta_T_available,
-                              curve.slip_margin):
-            u, r, a = (convert(u, "speed", units), convert(r, "tension", units),
-                       convert(a, "tension", units))
-            # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
-            su, st = (3, 3) if units == "si" else (4, 3 if units == "metric" else 4)
-            print(f"  {u:8.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g}  "
-                  f"{'holds' if m >= 1 else 'SLIPS'}")
-        slip = curve.slip_speed()
-        print("  the idler holds over the whole range" if slip is None
-              else f"  the idler slips above about {display(slip, 'speed', units, 3)}")
+        print(_table(curve, args.units))
     if folder is not None:
         from ..io.idler_chart import idler_chart
-        path = idler_chart(curve, folder / f"{Path(args.case).stem}_idler.png",
-                           title=f"{Path(args.case).stem}: will the idler slip?",
-                           units=args.units)
-        print(f"wrote {path}", file=sys.stderr)
+        from ..io.tables import write_csv, write_in_units
+        stem = f"{Path(args.case).stem}_idler"
+        rows = curve.rows()
+        paths = [write_csv(rows, folder / f"{stem}.csv", curve.COLUMNS),
+                 write_in_units(rows, folder / f"{stem}.csv", args.units, curve.COLUMNS),
+                 idler_chart(curve, folder / f"{stem}.png",
+                             title=f"{Path(args.case).stem}: will the idler slip? "
+                                   f"({curve.answered()})", units=args.units)]
+        for path in paths:
+            if path is not None:
+                print(f"wrote {path}", file=sys.stderr)
     return 0
+
+
+def _table(curve, units: str) -> str:
+    """The slip check as a table with a header naming each column and its unit, one row
+    per line speed (the model per row when auto chose per speed), and the verdict."""
+    speed, tension = unit_label("speed", units), unit_label("tension", units)
+    mixed = any(m != curve.model for m in curve.models_used)   # auto: its choice per row
+    lines = [f"idler slip check ({curve.answered()}): line speed [{speed}], delta_T "
+             f"required and available [{tension}] at the onset of slip, margin",
+             (f"  {'line speed':>10} {'required':>10} {'available':>10} {'margin':>9}  "
+              f"{'verdict':<7}" + ("  model" if mixed else "")).rstrip(),
+             f"  {f'[{speed}]':>10} {f'[{tension}]':>10} {f'[{tension}]':>10} {'[-]':>9}"]
+    used = curve.models_used or (curve.model,) * len(curve.speeds)
+    for u, r, a, m, name in zip(curve.speeds, curve.delta_T_required, curve.delta_T_available,
+                                curve.slip_margin, used):
+        u, r, a = (convert(u, "speed", units), convert(r, "tension", units),
+                   convert(a, "tension", units))
+        # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
+        su, st = (3, 3) if units == "si" else (4, 3 if units == "metric" else 4)
+        lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g}  "
+                      f"{'holds' if m >= 1 else 'SLIPS':<7}"
+                      + (f"  {name}" if mixed else "")).rstrip())
+    slip = curve.slip_speed()
+    lines.append("  the idler holds over the whole range" if slip is None
+                 else f"  the idler slips above about {display(slip, 'speed', units, 3)}")
+    return "\n".join(lines)

@@ -13,16 +13,19 @@ def add_parser(subparsers) -> None:
 
 def _case_lines() -> list[str]:
     from ..case import _SECTIONS, Case
-    from ..sections import ALIASES
+    from ..sections import ALIASES, _range_text
     from ..units import examples
 
     def line(name, key, default, meta):
         if "choices" in meta:
             extra = " one of " + ", ".join(meta["choices"])
+            valid = ""
         else:
             e1, e2 = examples(key, meta["unit"])
             extra = f" [{meta['unit']}] or e.g. '{e1}', '{e2}'"
-        return f"  {name:<18} = {default!r:<12}{extra}  {meta.get('doc', '')}"
+            # the range every value is checked against (sections.py), in the key's SI unit
+            valid = f" ({_range_text(meta).replace('must be', 'valid:')} {meta['unit']})"
+        return f"  {name:<18} = {default!r:<12}{extra}  {meta.get('doc', '')}{valid}"
 
     default = Case()
     lines = []
@@ -61,7 +64,9 @@ def _sweep_lines() -> list[str]:
 
 
 #: After the tables: how units are read.
-UNITS_NOTE = ("Numbers are in the SI unit shown in brackets; text with a unit is read too "
+UNITS_NOTE = ("Numbers are in the SI unit shown in brackets, within the range shown (generous "
+              "limits no real line reaches: a value beyond them is refused by name); text "
+              "with a unit is read too "
               "(TOML: speed = \"1200 m/min\"; command line: --set 'roller.speed=1200 m/min'). "
               "US: pli (lbf/in), ft/min or fpm, in, mil (0.001 in), psi.")
 

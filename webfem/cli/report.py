@@ -15,8 +15,10 @@ def add_parser(subparsers) -> None:
     p = subparsers.add_parser(
         "report", help="solve a case and write one HTML page to share (inputs, model, "
                        "summary, pictures, warnings, how it was computed)",
-        description="Solve CASE and write DIR/CASE_MODEL.html: a single page with the "
-                    "pictures embedded, that opens in any browser without webfem.",
+        description="Solve CASE and write DIR/CASE_MODEL.html (MODEL: the model asked for, "
+                    "base_auto.html by default): a single page with the pictures embedded, "
+                    "that opens in any browser without webfem. The page says which model "
+                    "answered and why.",
         formatter_class=HELP_FORMATTER, epilog=options_epilog())
     add_case_arguments(p)
     p.add_argument("--out", required=True, metavar="DIR", help="output folder for the page")
@@ -35,9 +37,15 @@ def run(args) -> int:
     # shared as if it were an answer
     with Ticker(f"solving with {args.model}", args.quiet):
         result = solve(case, model=args.model, options=options)
+    used = result.summary.model_used or args.model
+    asked = (f"asked for by name (--model {args.model})" if args.model_given
+             else f"the default of webfem report (--model {args.model})")
+    # the file keeps the model asked for (base_auto.html): a re-run replaces its own page
+    # whichever model auto picks; the title and the page say which answered
     path = write_report(result, folder, name=f"{stem}.html",
-                        title=f"webfem report: {Path(args.case).stem} ({args.model})",
-                        units=args.units)
+                        title=f"webfem report: {Path(args.case).stem} ("
+                              + (args.model if used == args.model else f"{args.model}: {used}")
+                              + ")", units=args.units, asked=asked)
     print(f"wrote {path}")
     if result.summary.warnings:
         print(f"webfem: {len(result.summary.warnings)} warning(s), listed in the page",

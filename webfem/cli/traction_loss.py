@@ -56,7 +56,7 @@ def run(args) -> int:
         print_json(out.to_dict())
     else:
         message = out.message if args.units == "si" else in_units(out.message, args.units)
-        print(f"webfem traction-loss ({out.model}): {message}; peak mu "
+        print(f"webfem traction-loss ({out.answered()}): {message}; peak mu "
               f"{out.mu_peak:.4f} at {display(out.speed_peak, 'speed', args.units, 3)}; "
               f"{out.evaluations} solves")
     if chart_dir:

@@ -20,7 +20,7 @@ from ..files import replacing
 from ..units import ROLES, convert, unit_label
 
 __all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart", "needs_markers",
-           "PARAMETER_LABELS", "parameter_label", "display_values"]
+           "PARAMETER_LABELS", "parameter_label", "display_values", "answered", "log_spaced"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
@@ -69,6 +69,34 @@ def _level_text(value: float) -> str:
     return f"{value:.{decimals}f}"
 
 
+def answered(rows: list[dict], asked: str) -> str:
+    """Which model answered sweep ``rows`` asked of model ``asked``, from their
+    ``model_used`` column: ``fe1d``; for auto ``auto: fe2d at every point`` or ``auto: fe1d
+    at 12, fe2d at 28 points``.
+
+    >>> answered([{"model_used": "fe1d"}, {"model_used": "fe2d"}], "auto")
+    'auto: fe1d at 1, fe2d at 1 points'
+    """
+    used = [r["model_used"] for r in rows if r.get("model_used")]
+    if not used or set(used) == {asked}:
+        return asked
+    counts = {m: used.count(m) for m in dict.fromkeys(used)}
+    if len(counts) == 1:
+        return f"{asked}: {used[0]} at every point"
+    return f"{asked}: " + ", ".join(f"{m} at {n}" for m, n in counts.items()) + " points"
+
+
+def log_spaced(values) -> bool:
+    """True for at least 3 positive values evenly spaced in their logarithm (and not
+    evenly in themselves): a sweep made with ``--log`` or ``spacing = "log"``."""
+    v = np.unique(np.asarray([x for x in values if x is not None and np.isfinite(x)], float))
+    if v.size < 3 or v.min() <= 0:
+        return False
+    steps, logs = np.diff(v), np.diff(np.log(v))
+    return bool(np.allclose(logs, logs.mean(), rtol=0.05)
+                and not np.allclose(steps, steps.mean(), rtol=0.05))
+
+
 def needs_markers(values) -> bool:
     """Markers on a sweep of fewer than 30 points or log-spaced values: a smooth line would
     suggest points that were never solved."""
@@ -107,7 +135,8 @@ def _level_labels(ax, levels: dict, unit: str = "um") -> None:
 
 
 def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
-                reference: list[dict] | None = None, units: str = "si") -> Path:
+                reference: list[dict] | None = None, units: str = "si",
+                log_x: bool | None = None) -> Path:
     """mu against the swept parameter per series, with the gaps (dashed) on a second axis.
 
     ``reference``: rows of another model (the closed form beside an FE sweep), drawn thin in
@@ -118,7 +147,9 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     The regime boundaries h = h_c and h = 3 sigma are grey lines on the gap axis, labelled
     there, one label per distinct value (close values share one). The legend sits outside
     the axes, on the right. ``units``: the swept parameter and the gaps are drawn in that
-    system's units.
+    system's units. ``log_x``: a logarithmic parameter axis (None: when the values are
+    log-spaced, :func:`log_spaced`). A row's ``model_used`` (auto's choice) is named in the
+    legend.
     """
     series = list(dict.fromkeys(r["series"] for r in rows))
     parameter = rows[0]["parameter"]
@@ -142,7 +173,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         ok = [r.get("converged") is True for r in sel]
         U = xs(sel)
         colour = colours[i % len(colours)]
-        model = sel[0]["model"]
+        model = answered(sel, sel[0]["model"])
         ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
                 lw=1.8, marker=marker, ms=3.5,
                 label=f"{label}: mu ({model})" if len(series) > 1 or reference
@@ -167,7 +198,11 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
                 if np.isfinite(_f(r, key)):
                     value = float(_level_text(factor * float(gaps([r], key)[0])))
                     levels.setdefault(value, (name, set()))[1].add(str(label))
-    ax.set_xlabel(parameter_label(parameter, units))
+    if log_x is None:
+        log_x = log_spaced([r["value"] for r in rows])
+    if log_x:
+        ax.set_xscale("log")
+    ax.set_xlabel(parameter_label(parameter, units) + (" (log scale)" if log_x else ""))
     ax.set_ylabel("friction coefficient mu [-] (solid)")
     thin = unit_label("thin", units)
     ax2.set_ylabel(f"web spacing h [{thin}] (dashed; grey: regime levels)")
@@ -274,7 +309,12 @@ def calibration_chart(fit: dict, path, units: str = "si") -> Path:
     a.plot(lim, lim, "k-", lw=0.8)
     name = f"delta_T [{unit_label('tension', units)}]" if tension else "mu [-]"
     a.set_xlabel(f"measured {name}")
-    a.set_ylabel(f"predicted {name} ({fit['model']})")
+    try:   # auto: the models that answered the rows (a mapping may not have them)
+        used = list(dict.fromkeys(fit["models_used"]))
+    except KeyError:
+        used = []
+    model = fit["model"] + (f": {', '.join(used)}" if used and used != [fit["model"]] else "")
+    a.set_ylabel(f"predicted {name} ({model})")
     est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k], ROLES.get(k), units)}"
                     for k, v in fit["estimates"].items() if v is not None)
     a.set_title(est + " (95 %)", fontsize=8)

@@ -27,7 +27,7 @@ def idler_chart(curve, path, title: str = "", units: str = "si") -> Path:
     margin = np.asarray(curve.slip_margin, float)
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
     a.plot(u, req, "k--", lw=1.2, label="required (drag + J a / R)")
-    a.plot(u, avail, "o-", ms=3.5, label=f"available ({curve.model})")
+    a.plot(u, avail, "o-", ms=3.5, label=f"available ({curve.answered()})")
     a.set_xlabel(f"line speed U_r = U_w [{speed}]")
     a.set_ylabel(f"tension difference delta_T [{tension}]")
     a.set_ylim(0.0, max(2.5 * req.max(), 1.05 * np.nanmax(avail[:1])))

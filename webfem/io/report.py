@@ -145,14 +145,18 @@ def _inputs(case, units: str = "si") -> str:
     return _table(("key", "value", "unit (SI)" if units == "si" else "unit", "meaning"), rows)
 
 
-def _model(result) -> str:
+def _model(result, asked: str | None = None) -> str:
     s, d = result.summary, result.diagnostics
     used = s.model_used or s.model
-    lines = [f"<p>Asked for <b>{escape(s.model)}</b>; answered by <b>{escape(used)}</b>.</p>"]
+    lines = [f"<p>Asked for <b>{escape(s.model)}</b>"
+             + (f" ({escape(asked)})" if asked else "")
+             + f"; answered by <b>{escape(used)}</b>.</p>"]
     if not s.why:
-        lines.append("<p>Why: asked for by name (<span class=key>--model</span>); "
-                     "<span class=key>--model auto</span> picks the simplest model within "
-                     "its tolerance.</p>")
+        how = (escape(asked) if asked else
+               f"{escape(s.model)} was named (<span class=key>model = '{escape(s.model)}'"
+               "</span>)")
+        lines.append(f"<p>Why: {how}; <span class=key>--model auto</span> picks the "
+                     "simplest model within its tolerance.</p>")
     else:
         err = ("" if s.estimated_error is None else
                f" Estimated relative error in {escape(str(s.quantity))}: "
@@ -209,16 +213,17 @@ def _computed(result, version: str) -> str:
 
 
 def report_html(result, *, title: str = "", pictures=(), version: str = "",
-                units: str = "si") -> str:
+                units: str = "si", asked: str | None = None) -> str:
     """The page as text. ``pictures``: ``(png path, caption)`` pairs, embedded in order;
-    ``units``: of the inputs and the summary."""
+    ``units``: of the inputs and the summary; ``asked``: how the model was asked for (e.g.
+    "the default of webfem report (--model auto)"), shown beside it."""
     s = result.summary
     used = s.model_used or s.model
     title = title or "webfem report"
     warn = "".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings) \
         or '<p class="ok">No warnings.</p>'
     figures = "\n".join(_picture(p, c) for p, c in pictures) or "<p>No pictures.</p>"
-    body = {"inputs": _inputs(result.case, units), "model": _model(result),
+    body = {"inputs": _inputs(result.case, units), "model": _model(result, asked),
             "summary": _summary(result, units), "pictures": figures, "warnings": warn,
             "computed": _computed(result, version)}
     head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)}, smallest gap "
@@ -235,12 +240,13 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
 
 
 def write_report(result, folder, *, title: str = "", charts=(), name: str = "report.html",
-                 units: str = "si") -> Path:
+                 units: str = "si", asked: str | None = None) -> Path:
     """Write the page into ``folder`` (created if missing) and return its path.
 
     The film picture (:func:`webfem.io.pictures.film_figure`) is drawn for every result;
     ``charts`` adds ``(png path, caption)`` pairs after it. The page appears whole or not at
-    all. ``units``: of the tables and the film picture (charts given are drawn already).
+    all. ``units``: of the tables and the film picture (charts given are drawn already);
+    ``asked``: how the model was asked for, as the page states it (:func:`report_html`).
     """
     from .. import __version__
     from .pictures import film_figure
@@ -253,5 +259,5 @@ def write_report(result, folder, *, title: str = "", charts=(), name: str = "rep
         caption = (("Film pressure over the full width, " if result.film is not None else "")
                    + f"gap along the centre line and local friction in the wrap ({used}).")
         html = report_html(result, title=title, version=__version__,
-                           pictures=[(film, caption), *charts], units=units)
+                           pictures=[(film, caption), *charts], units=units, asked=asked)
     return write_text(folder / name, html)

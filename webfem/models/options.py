@@ -145,16 +145,38 @@ class Options:
         values = dict(values or {})
         for key in values:
             if key not in cls.names():
-                raise unknown_name(f"{cls.model} option", key, cls.names())
+                raise cls._unknown(key, cls.names())
         return cls(**values)
+
+    @classmethod
+    def _unknown(cls, name: str, valid, where: str = "") -> InputError:
+        """The error for a name that is not an option of this model: an option of another
+        model says whose it is (``symmetry`` is fe2d's, not fe1d's), instead of a near
+        name of this model's that means something else; a misspelling gets the closest
+        of this model's names."""
+        owners = [t.model for t in _option_types() if t is not cls and name in t.names()
+                  and (not where or dataclasses.fields(t)[t.names().index(name)]
+                       .metadata["cli"])]
+        if owners and cls.model:
+            whose = " and ".join(owners) if len(owners) < 3 else \
+                ", ".join(owners[:-1]) + " and " + owners[-1]
+            takes = ", ".join(valid) if valid else "none"
+            use = f"--model {owners[0]}" if where else f"model='{owners[0]}'"
+            return InputError(f"unknown {cls.model} option '{name}'{where}: it is an "
+                              f"option of {whose}, not of {cls.model}: give it with that "
+                              f"model ({use}) or leave it out; {cls.model} options: {takes}")
+        return unknown_name(f"{cls.model} option", name, valid, where)
 
     @classmethod
     def parse(cls, name: str, text: str) -> Any:
         """The typed value of option ``name`` from command-line ``text``."""
         fields = {f.name: f for f in dataclasses.fields(cls)}
-        if name not in fields or not fields[name].metadata["cli"]:
-            valid = [n for n, f in fields.items() if f.metadata["cli"]]
-            raise unknown_name(f"{cls.model} option", name, valid, " (--opt)")
+        valid = [n for n, f in fields.items() if f.metadata["cli"]]
+        if name in fields and not fields[name].metadata["cli"]:
+            raise InputError(f"{cls.model} option '{name}' (--opt) is set from Python only "
+                             f"({fields[name].metadata['doc']})")
+        if name not in fields:
+            raise cls._unknown(name, valid, " (--opt)")
         meta = fields[name].metadata
         raw = text.strip().strip('"').strip("'")
         kind = meta["kind"]
@@ -194,7 +216,7 @@ class Options:
         """A copy with some options changed (validated again)."""
         for key in changes:
             if key not in self.names():
-                raise unknown_name(f"{self.model} option", key, self.names())
+                raise self._unknown(key, self.names())
         return dataclasses.replace(self, **changes)
 
     def changed(self) -> dict[str, Any]:
@@ -365,6 +387,11 @@ AutoOptions = dataclasses.make_dataclass(
     "AutoOptions", _auto_fields(), bases=(_AutoBase,), frozen=True, repr=False,
     namespace={"__doc__": "The automatic choice of the cheapest adequate model.",
                "__module__": __name__})
+
+
+def _option_types() -> tuple[type[Options], ...]:
+    """Every model's options type (for the messages that say whose an option is)."""
+    return (ClosedFormOptions, FE1DOptions, FE2DOptions, AutoOptions)
 
 
 def fe_options(auto, target: type[FE1DOptions]) -> FE1DOptions:

@@ -110,7 +110,8 @@ def _chunks(todo: list[int], points: list[_Point], size: int) -> list[list[int]]
 
 def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
         dask: str | None = None, chunk: int | None = None,
-        progress: Callable[[int, int], None] | None = None, vtu=None) -> list[dict]:
+        progress: Callable[[int, int], None] | None = None, vtu=None,
+        replace: bool = False, notice: Callable[[str], None] | None = None) -> list[dict]:
     """Run (or resume) a sweep, appending each point to ``out_csv`` as it finishes.
 
     Parameters
@@ -122,7 +123,10 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     out_csv : path
         The CSV; beside it ``NAME.sweep.json`` (what the sweep is) and, while running, the
         hidden lock ``.NAME.csv.lock``. A re-run of the same sweep keeps its converged rows
-        and solves the rest (a torn last line included); a different sweep starts over.
+        and solves the rest (a torn last line included: resume); a sweep holding every
+        point of the old one with the same settings keeps them and solves the new ones
+        (extend); a CSV of any other sweep is refused (InputError) unless ``replace``
+        (:meth:`webfem.sweeps.store.Store.decide`).
     options : Options or dict, optional
         The model's options.
     workers, dask, chunk
@@ -137,6 +141,11 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
         An object with ``missing(series_index, point_index)``, ``write(series_index,
         point_index, label, value, result)`` and ``close()`` (e.g.
         :class:`webfem.io.vtu.SweepVtu`); points whose files are missing are solved again.
+    replace : bool
+        Start over in a CSV that holds another sweep (keeping only the converged rows of
+        points this sweep shares with a compatible one) instead of refusing.
+    notice : callable, optional
+        ``notice(text)``: told, in one line, when the CSV is resumed, extended or replaced.
 
     Returns
     -------
@@ -146,8 +155,9 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     Raises
     ------
     InputError
-        Bad arguments, an output that cannot be written, or the CSV locked by a running
-        sweep (the message names it); all before anything is solved.
+        Bad arguments, an output that cannot be written, the CSV locked by a running
+        sweep (the message names it), or a CSV of another sweep without ``replace``; all
+        before anything is solved.
     SweepInterrupted
         Ctrl-C (a ``KeyboardInterrupt``): says how many points are saved.
 
@@ -173,7 +183,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     engine = None
     try:
         lock.acquire()
-        done = store.load(keys)
+        done = store.decide(keys, replace=replace, notice=notice)
         saved.update(done)
         todo = [n for n, p in enumerate(points) if n not in done
                 or (vtu is not None and vtu.missing(p.series, p.index))]

@@ -3,8 +3,19 @@
 * ``NAME.csv``: one row per finished point, appended (and forced to disk) as each finishes;
   rewritten in sweep order at the end.
 * ``NAME.sweep.json`` (sidecar): the sweep's signature (parameter, values, series, model,
-  changed options, webfem version). A re-run with the same signature keeps the converged
-  rows and solves the rest; a different one starts over.
+  changed options, webfem version). What a sweep does with a CSV already there
+  (:meth:`Store.decide`):
+
+  - the same sweep: **resume** (keep the converged rows, solve the rest);
+  - a sweep that holds every point of the old one, with the same model, options, swept
+    parameter, webfem version and case per series label (more values or series):
+    **extend** (keep the old converged rows, solve the new points);
+  - anything else (another model or case, values that drop old points, a CSV without its
+    sidecar or with other columns): **refuse** with an InputError saying what differs,
+    unless ``replace`` is given: then start over in that file, keeping only the rows of
+    points this sweep shares with a compatible old one.
+
+  The three cases are told to the caller (``notice``), never done silently.
 * ``.NAME.csv.lock`` (hidden): held while a sweep writes, holding its pid, host, start time
   and signature hash. A second sweep into the same CSV, identical or not, is refused while
   the first runs (two writers would mix their rows); a lock whose process has ended on this
@@ -67,6 +78,38 @@ def _by_point(rows, keys: dict, row_key=_sweep_key) -> dict[int, dict]:
         if index is not None:
             out[index] = row
     return out
+
+
+def _old_points(sig: dict) -> set[tuple[str, str]]:
+    """The point keys of the sweep a signature describes."""
+    return {point_key(label, v) for label, _ in sig.get("series", [])
+            for v in sig.get("values", [])}
+
+
+def _extent(sig: dict) -> str:
+    """``40 values of roller.speed 0.5 .. 40 x 2 series``: a sweep's size for messages."""
+    values = [float(v) for v in sig.get("values", [])]
+    span = f" {min(values):g} .. {max(values):g}" if values else ""
+    n = len(sig.get("series", []))
+    return (f"{len(values)} values of {sig.get('parameter', '?')}{span} x {n} series")
+
+
+def _differences(old: dict, new: dict) -> list[str]:
+    """What keeps the rows of sweep ``old`` from being rows of sweep ``new`` (empty when
+    they may be kept: the same model, options, parameter, webfem version, and the same case
+    for every series label of ``old``, which ``new`` must have)."""
+    why = []
+    for key, what in (("model", "model"), ("parameter", "swept parameter"),
+                      ("options", "model options"), ("webfem", "webfem version")):
+        if old.get(key) != new.get(key):
+            why.append(f"{what} {old.get(key)!r}, not {new.get(key)!r}")
+    cases = {label: case for label, case in new.get("series", [])}
+    for label, case in old.get("series", []):
+        if label not in cases:
+            why.append(f"series {label!r}, which this sweep does not have")
+        elif cases[label] != case:
+            why.append(f"series {label!r} with other case values")
+    return why
 
 
 class SweepLock:
@@ -241,6 +284,73 @@ class Store:
             raise InputError(f"cannot create the folder {parent}: permission denied") from None
         if not os.access(parent, os.W_OK | os.X_OK):
             raise InputError(f"cannot write in {parent}: permission denied")
+
+    def decide(self, keys: dict, *, replace: bool = False, notice=None) -> dict[int, dict]:
+        """What to do with a CSV already at the path (see the module notes): the rows kept,
+        by point index, after telling ``notice(text)`` what is done with the file (resume,
+        extend, or replace). Raises InputError (refuse) when the CSV holds another sweep
+        and ``replace`` is False. A sweep's store only: ``sig`` must have ``values`` and
+        ``series``."""
+        remove_stale_temps(self.csv_path.parent, self.csv_path.name)
+        remove_stale_temps(self.sidecar.parent, self.sidecar.name)
+        try:
+            table = read_table(self.csv_path)
+        except FileNotFoundError:
+            return {}
+        except OSError as err:
+            raise InputError(f"{self.csv_path}: cannot be read ({err.strerror or err})") \
+                from None
+        if not table.header and not table.rows:
+            return {}                       # an empty file: nothing to keep or lose
+        try:
+            old = json.loads(self.sidecar.read_text())
+        except (OSError, ValueError):
+            old = None
+        new = json.loads(json.dumps(self.sig))
+        held = len(table.rows)
+        if table.header != list(self.columns):
+            why = ["its columns are not those of a webfem sweep of this version"]
+        elif not isinstance(old, dict):
+            why = [f"it has no readable sidecar {self.sidecar.name} saying which sweep "
+                   "wrote it"]
+        else:
+            why = _differences(old, new)
+        converged = {i: r for i, r in _by_point(table.rows, keys, self.row_key).items()
+                     if r["converged"] == "True"}
+        if not why:
+            if old == new:
+                if converged and notice:
+                    rest = len(keys) - len(converged)
+                    notice(f"{self.csv_path}: resuming this sweep: {len(converged)} of "
+                           f"{len(keys)} points already there, "
+                           + (f"solving the other {rest}" if rest else "nothing to solve"))
+                return converged
+            dropped = _old_points(old) - set(keys)
+            if not dropped:
+                if notice:
+                    notice(f"{self.csv_path}: extending the sweep it holds ("
+                           f"{_extent(old)}) to this one ({_extent(new)}): keeping its "
+                           f"{len(converged)} converged points, solving the "
+                           f"{len(keys) - len(converged)} others")
+                return converged
+            why = [f"{len(dropped)} of its {len(_old_points(old))} points "
+                   f"{'is' if len(dropped) == 1 else 'are'} not in this sweep: it ran "
+                   f"{_extent(old)}, this sweep {_extent(new)}"]
+            compatible = True
+        else:
+            compatible = False
+        if not replace:
+            raise InputError(
+                f"{self.csv_path} holds another sweep ({'; '.join(why)}): its {held} rows "
+                "are left as they are. Write elsewhere (another --out), or start over in "
+                "this file with --replace (replace=True)")
+        kept = converged if compatible else {}
+        if notice:
+            notice(f"{self.csv_path}: replacing its {held} rows of another sweep "
+                   f"({'; '.join(why)})"
+                   + (f"; keeping the {len(kept)} converged points this sweep shares with it"
+                      if kept else ""))
+        return kept
 
     def load(self, keys: dict) -> dict[int, dict]:
         """Converged rows (with ``keep_failures`` every row) of an earlier run of the same

@@ -25,17 +25,21 @@ from pathlib import Path
 from ..result import SUMMARY_KEYS
 from ..files import replacing
 
-__all__ = ["ROW_KEYS", "EXTRA_KEYS", "sweep_rows", "failure_row", "format_header",
+__all__ = ["ROW_KEYS", "EXTRA_KEYS", "ANSWER_KEYS", "sweep_rows", "failure_row", "format_header",
            "format_row", "parse_csv", "read_table", "typed", "write_csv"]
 
 EXTRA_KEYS = ("h_c", "sigma", "share_boundary", "share_mixed", "share_fluid", "contact_share",
-              "eps", "kappa", "U", "U_slide", "residual", "solver_message", "mesh", "warnings")
+              "eps", "kappa", "U", "U_slide", "residual", "solver_message", "mesh", "warnings",
+              "model_used", "why")
+#: Columns that say which model answered a row: ``model_used`` (auto's choice at that
+#: point, else the model itself) and ``why`` (auto's reason; empty for a named model).
+ANSWER_KEYS = ("model_used", "why")
 #: The columns of a sweep CSV, in order.
 ROW_KEYS = ("series", "parameter", "value") + SUMMARY_KEYS + EXTRA_KEYS
 #: Columns holding text (``message``: the traction-loss table of webfem.groove_sizing, kept
 #: in the same store); ``BOOL_KEYS`` hold True/False, ``INT_KEYS`` counts; others numbers.
 TEXT_KEYS = frozenset({"series", "parameter", "model", "regime", "solver_message", "mesh",
-                       "warnings", "message"})
+                       "warnings", "message", "model_used", "why"})
 BOOL_KEYS = frozenset({"eq21_valid", "converged"})
 INT_KEYS = frozenset({"iterations", "n_dofs"})
 
@@ -49,6 +53,8 @@ def sweep_rows(points, parameter: str) -> list[dict]:
         for key in SUMMARY_KEYS + EXTRA_KEYS:
             v = data.get(key)
             row[key] = "; ".join(v) if isinstance(v, list) else v
+        # every row names the model that answered it, auto's choice or the model itself
+        row["model_used"] = data.get("model_used") or data.get("model")
         rows.append(row)
     return rows
 
@@ -57,7 +63,8 @@ def failure_row(label: str, parameter: str, value: float, model: str, message: s
     """The row of a point whose solve raised instead of answering (not converged)."""
     row = {k: None for k in ROW_KEYS}
     row.update(series=label, parameter=parameter, value=float(value), model=model,
-               converged=False, solver_message=" ".join(message.split()))
+               converged=False, solver_message=" ".join(message.split()),
+               model_used=None if model == "auto" else model)
     return row
 
 
