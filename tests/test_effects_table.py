@@ -98,8 +98,9 @@ def test_effects_with_auto_solve_every_variant_with_autos_choice(monkeypatch, ca
     assert table.model == "fe1d" and table.asked == "auto"
     assert table.rows[1].effect == "bending" and table.rows[1].d_h_min != 0.0
     text = table.text()
-    assert text.startswith("effects on fe1d (auto's choice for the full case: test: fe1d is "
-                           "adequate -> fe1d; every row solved with fe1d)")
+    assert text.startswith("effects on fe1d (auto's choice for the full case; every row "
+                           "solved with fe1d)")
+    assert "why fe1d: test: fe1d is adequate -> fe1d" in text
     assert table.to_dict()["asked"] == "auto" and "fe1d is adequate" in table.to_dict()["why"]
     assert main(["effects", "base", "--json"]) == 0   # the command's default is auto
     data = json.loads(capsys.readouterr().out)

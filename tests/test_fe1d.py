@@ -18,7 +18,7 @@ from webfem.errors import ConvergenceError
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
 from webfem.models import fe1d
-from webfem.models.driver import minimum
+from webfem.models.refine import minimum
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.options import FE1DOptions
 

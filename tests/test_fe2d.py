@@ -13,7 +13,7 @@ from webfem.fem.scaling import FoilParameters
 from webfem.fem.transfer import width_nodes
 from webfem.io.vtu import FILM_FIELDS, WEB_FIELDS, write_result
 from webfem.models import fe1d, fe2d
-from webfem.models.driver import minimum
+from webfem.models.refine import minimum
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
 

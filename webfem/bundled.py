@@ -20,7 +20,7 @@ from pathlib import Path
 from .case import Case, load_case
 from .errors import InputError
 
-__all__ = ["bundled_cases", "find_case", "as_case"]
+__all__ = ["bundled_cases", "locate_case", "find_case", "as_case"]
 
 
 def bundled_cases() -> dict[str, Path]:
@@ -31,22 +31,33 @@ def bundled_cases() -> dict[str, Path]:
             if p.name.endswith(".toml")}
 
 
-def find_case(text: str | os.PathLike) -> Path:
-    """The case file ``text`` names: the file itself, ``text.toml`` in the current folder,
-    else the bundled case of that name (``base``, ``base.toml``). A name that is none of
-    these is returned as given (:func:`~webfem.case.load_case` then says it is missing)."""
+def locate_case(text: str | os.PathLike) -> tuple[Path, str]:
+    """The case file ``text`` names and a note saying which file that is ("" when ``text``
+    is a path): the file itself; for a bare name (``base``, ``base.toml``: no folder)
+    ``NAME.toml`` in the current folder, else the bundled case of that name. A name that is
+    none of these is returned as given (:func:`~webfem.case.load_case` then says it is
+    missing)."""
     path = Path(text)
-    if path.is_file():
-        return path
+    if path.is_file():        # a file named as such: what was asked for
+        return path, ""
     name = str(text)
-    if "/" not in name and os.sep not in name:
-        local = Path(name if name.endswith(".toml") else name + ".toml")
-        if local.is_file():
-            return local
-        bundled = bundled_cases().get(name.removesuffix(".toml"))
-        if bundled is not None:
-            return bundled
-    return path
+    stem = name.removesuffix(".toml")
+    if any(sep and sep in name for sep in ("/", os.sep, os.altsep)):
+        return path, ""
+    here = Path(f"{stem}.toml")
+    bundled = bundled_cases().get(stem)
+    if here.is_file():
+        return here, (f"case '{name}' is ./{here}, the file here"
+                      + (" (not the bundled case of that name)" if bundled else ""))
+    if bundled is not None:
+        return bundled, (f"case '{name}' is the bundled {bundled.name} ({bundled}); no "
+                         f"{stem}.toml here (`webfem init {stem}` copies it to edit)")
+    return path, ""
+
+
+def find_case(text: str | os.PathLike) -> Path:
+    """The case file ``text`` names (:func:`locate_case`)."""
+    return locate_case(text)[0]
 
 
 def as_case(case: Case | str | os.PathLike) -> Case:

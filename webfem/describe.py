@@ -2,7 +2,21 @@
 
 from __future__ import annotations
 
-__all__ = ["describe", "verdict"]
+__all__ = ["describe", "verdict", "error_text"]
+
+_NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
+          "contact_share": "contact share"}
+
+
+def error_text(s) -> str | None:
+    """The stated errors of a summary on one line, or None where it states none:
+    ``h_center 3e-04, h_min 4e-05, mu 3e-04 (relative), contact share 8e-05 (absolute)``."""
+    values = {q: s.get(f"error_{q}") for q in _NAMES}
+    if all(v is None for v in values.values()):
+        return None
+    parts = [f"{_NAMES[q]} {v:.1g}" for q, v in values.items() if v is not None]
+    return ", ".join(parts) + " (relative; mu against max(|mu|, 0.1 mu_cc), the contact " \
+        "share absolute)"
 
 
 def verdict(s) -> str:
@@ -14,6 +28,15 @@ def verdict(s) -> str:
     return (f"  idler slips: needs {s.delta_T_required:.3g} N/m, can carry "
             f"{s.delta_T_available:.3g} N/m (margin {s.slip_margin:.2g}, mu_onset "
             f"{s.mu_onset:.3g})")
+
+
+def judged_text(s) -> str:
+    """``largest stated error 0.00031 <= 0.01 (every quantity judged)`` for auto's choice."""
+    what = "every quantity judged" if s.quantity == "all" else f"{s.quantity} judged"
+    if s.estimated_error is None:
+        return f"error not estimated; {what}"
+    sign = "<=" if s.estimated_error <= s.tolerance else ">"
+    return f"largest stated error {s.estimated_error:.2g} {sign} {s.tolerance:g}, {what}"
 
 
 def describe(result) -> str:
@@ -41,6 +64,9 @@ def describe(result) -> str:
         f"  converged = {s.converged}, iterations = {s.iterations}, "
         f"n_dofs = {s.n_dofs}, time = {s.solve_time_s * 1e3:.3f} ms",
     ]
+    errors = error_text(s)
+    lines.append(f"  stated error: {errors}; {s.error_basis}" if errors else
+                 "  stated error: none (no estimate was made)")
     if s.mesh is not None:
         lines.append(f"  {s.method or ''} on {s.mesh}; residual {s.residual:.2e}; contact "
                      f"carries {100 * (s.contact_share or 0.0):.1f} % of the wrap load")
@@ -49,10 +75,7 @@ def describe(result) -> str:
                      f"{100 * (s.contact_share_lands or 0.0):.1f} % of the lands' load; "
                      f"{s.groove_domain}")
     if s.why is not None:
-        err = ("not estimated" if s.estimated_error is None
-               else f"{s.estimated_error:.2g} <= {s.tolerance:g}")
-        lines.append(f"  model used: {s.model_used} (estimated {s.quantity} error {err}): "
-                     f"{s.why}")
+        lines.append(f"  model used: {s.model_used} ({judged_text(s)}): {s.why}")
     lines.append(f"  physics: T_eff = {s.T_eff:.4g} N/m, D = {s.bending_stiffness_used:.3g} N m; "
                  "effects: " + (", ".join(s.effects) or "none (the paper's model)"))
     if s.slip_margin is not None:

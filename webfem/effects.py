@@ -21,6 +21,8 @@ bending, would show bending as changing nothing.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 from .api import solve
@@ -88,22 +90,28 @@ class EffectsTable:
     not_carried: tuple[str, ...] = ()
     asked: str = ""
     why: str | None = None
+    #: The full answer's stated errors (``error_h_center``, ``error_h_min``, ``error_mu``):
+    #: a change below them is within what the model can tell apart.
+    errors: dict | None = None
 
     def to_dict(self) -> dict:
         return {"model": self.model, "rows": [r.to_dict() for r in self.rows],
                 "not_carried": list(self.not_carried), "asked": self.asked or self.model,
-                "why": self.why}
+                "why": self.why, "errors": {k: v if v is not None and math.isfinite(v)
+                                            else None for k, v in (self.errors or {}).items()}}
 
     def text(self) -> str:
         """A fixed-width table: how much switching each effect off moves the answer."""
         idler = self.rows[0].slip_margin is not None
-        chosen = (f" (auto's choice for the full case: {self.why}; every row solved with "
-                  f"{self.model})" if self.asked and self.asked != self.model else "")
+        chosen = (f" (auto's choice for the full case; every row solved with {self.model})"
+                  if self.asked and self.asked != self.model else "")
         lines = [f"effects on {self.model}{chosen}: the answer with every effect, then with "
-                 "each one switched off (change relative to all included)",
-                 f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
-                 f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>10}"
-                 + (f"{'slip margin':>13}" if idler else "")]
+                 "each one switched off (change relative to all included)"]
+        if chosen and self.why:
+            lines.append(f"  why {self.model}: {self.why}")
+        lines.append(f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
+                     f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>10}"
+                     + (f"{'slip margin':>13}" if idler else ""))
         small_mu = abs(self.rows[0].mu) < 1e-3
         for r in self.rows:
             d_mu = (("-" if r.d_mu == 0 else f"{r.d_mu:+.4f}") if small_mu else _pct(r.d_mu))
@@ -112,6 +120,11 @@ class EffectsTable:
                          f"{d_mu:>10}" + (f"{r.slip_margin:>13.3g}" if idler else ""))
         if small_mu:
             lines.append("  (mu below 1e-3: its change is absolute, not relative)")
+        known = {k: v for k, v in (self.errors or {}).items() if v is not None}
+        if known:
+            lines.append("  stated errors of the full answer: " + ", ".join(
+                f"{k.removeprefix('error_')} {v:.1g}" for k, v in known.items())
+                + " (a smaller change is within them)")
         if self.not_carried:
             lines.append(f"  ({', '.join(self.not_carried)}: not carried by {self.model})")
         return "\n".join(lines)
@@ -156,5 +169,7 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
         if progress:
             progress(i, total)
     missing = tuple(e for e in effects if e not in carried)
+    errors = {f"error_{q}": base.summary.get(f"error_{q}")
+              for q in ("h_center", "h_min", "mu")}
     return EffectsTable(model, tuple(rows), missing, asked=asked,
-                        why=why if asked != model else None)
+                        why=why if asked != model else None, errors=errors)

@@ -26,9 +26,9 @@ import tempfile
 import textwrap
 import threading
 import time
-from importlib import resources
 from pathlib import Path
 
+from ..bundled import bundled_cases, locate_case
 from ..case import Case, load_case, parse_assignment
 from ..errors import InputError
 from ..models.options import Options
@@ -45,14 +45,6 @@ __all__ = ["HELP_FORMATTER", "DEFAULT_MODEL", "UNITS_HELP", "add_case_arguments"
 #: The model a subcommand uses unless told: the cheapest whose estimated error meets the
 #: tolerance, and it says which answered and why.
 DEFAULT_MODEL = "auto"
-
-
-def bundled_cases() -> dict[str, Path]:
-    """The cases that ship inside the package: ``{name: path}``, sorted by name."""
-    folder = resources.files("webfem") / "cases"
-    return {Path(p.name).stem: Path(str(p)) for p in sorted(folder.iterdir(),
-                                                             key=lambda p: p.name)
-            if p.name.endswith(".toml")}
 
 
 class CaseArgument(str):
@@ -74,22 +66,8 @@ def case_path(text: str) -> str:
     A file here comes first, so that a case copied with ``webfem init base`` and edited is
     what ``webfem solve base`` reads; either way the returned :class:`CaseArgument` carries
     a note saying which file was read (printed by :func:`case_from`)."""
-    name = text.removesuffix(".toml")
-    bare = "/" not in text and os.sep not in text and (os.altsep or "/") not in text
-    if Path(text).is_file():   # a file named as such: what was asked for
-        return CaseArgument(text)
-    if bare:
-        here = Path(f"{name}.toml")
-        bundled = bundled_cases().get(name)
-        if here.is_file():
-            return CaseArgument(str(here), f"case '{text}' is ./{here}, the file here"
-                                + (" (not the bundled case of that name)" if bundled
-                                   else ""))
-        if bundled is not None:
-            return CaseArgument(str(bundled), f"case '{text}' is the bundled {bundled.name} "
-                                f"({bundled}); no {name}.toml here (`webfem init {name}` "
-                                "copies it to edit)")
-    return CaseArgument(text)   # load_case names the missing file
+    path, note = locate_case(text)
+    return CaseArgument(str(path) if note else text, note)
 
 
 def announce_case(args) -> None:

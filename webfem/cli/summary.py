@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from ..describe import judged_text
 from ..units import convert, unit_label
 
 __all__ = ["model_line", "summary_text", "in_units"]
@@ -21,14 +22,12 @@ _QUANTITY = re.compile(r"(?<![\w.])([-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?) (m/s|N/
 
 
 def model_line(result, asked: str) -> str:
-    """``webfem auto: fe2d answered (estimated mu error 0.0001 <= 0.01); WHY`` for auto,
+    """``webfem auto: fe2d answered (largest stated error 0.00031 <= 0.01, every quantity
+    judged); WHY`` for auto,
     else the model named with ``--model``."""
     s = result.summary
     if s.why is not None:
-        err = ("not estimated" if s.estimated_error is None
-               else f"{s.estimated_error:.2g} <= {s.tolerance:g}")
-        return (f"webfem {asked}: {s.model_used} answered (estimated {s.quantity} error "
-                f"{err}); {s.why}")
+        return f"webfem {asked}: {s.model_used} answered ({judged_text(s)}); {s.why}"
     return f"webfem {s.model}: the model asked for (--model {asked})"
 
 

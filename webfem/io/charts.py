@@ -219,9 +219,27 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
                loc="outside right upper")
     _level_labels(ax2, levels, thin)
-    if title:
-        ax.set_title(title, fontsize=10)
+    stated = stated_errors_text(rows)
+    if title or stated:
+        ax.set_title("\n".join(t for t in (title, stated) if t), fontsize=10)
     return _save(fig, path)
+
+
+def stated_errors_text(rows: list[dict]) -> str:
+    """The largest error the converged rows state, per quantity: ``stated errors up to:
+    h_center 3e-04, h_min 4e-05, mu 3e-04`` ("" where no row states one).
+
+    >>> stated_errors_text([{"converged": True, "error_h_center": 2e-4, "error_h_min": 1e-3,
+    ...                      "error_mu": None}])
+    'stated errors up to: h_center 0.0002, h_min 0.001'
+    """
+    parts = []
+    for q in ("h_center", "h_min", "mu"):
+        values = [float(r[f"error_{q}"]) for r in rows if r.get("converged") is True
+                  and r.get(f"error_{q}") not in (None, "")]
+        if values:
+            parts.append(f"{q} {max(values):.1g}")
+    return "stated errors up to: " + ", ".join(parts) if parts else ""
 
 
 def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,

@@ -34,6 +34,7 @@ import tempfile
 from html import escape
 from pathlib import Path
 
+from ..describe import error_text, judged_text
 from ..files import write_text
 from ..units import ROLES, convert, unit_label
 
@@ -158,10 +159,10 @@ def _model(result, asked: str | None = None) -> str:
         lines.append(f"<p>Why: {how}; <span class=key>--model auto</span> picks the "
                      "simplest model within its tolerance.</p>")
     else:
-        err = ("" if s.estimated_error is None else
-               f" Estimated relative error in {escape(str(s.quantity))}: "
-               f"{s.estimated_error:.2g} (tolerance {s.tolerance:g}).")
-        lines.append(f"<p>Why: {escape(s.why)}.{err}</p>")
+        lines.append(f"<p>Why: {escape(s.why)} ({escape(judged_text(s))}).</p>")
+    errors = error_text(s)
+    lines.append(f"<p>Stated error: {escape(errors)}; {escape(s.error_basis or '')}.</p>"
+                 if errors else "<p>Stated error: none (no estimate was made).</p>")
     effects = ", ".join(s.effects) or "none beyond the paper's model"
     lines.append(f"<p>Effects included: {escape(effects)}. Physics: "
                  f"<span class=key>{escape(result.case.model.physics)}</span>.</p>")

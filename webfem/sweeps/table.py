@@ -30,7 +30,8 @@ __all__ = ["ROW_KEYS", "EXTRA_KEYS", "ANSWER_KEYS", "sweep_rows", "failure_row",
 
 EXTRA_KEYS = ("h_c", "sigma", "share_boundary", "share_mixed", "share_fluid", "contact_share",
               "eps", "kappa", "U", "U_slide", "residual", "solver_message", "mesh", "warnings",
-              "model_used", "why")
+              "model_used", "why", "error_h_center", "error_h_min", "error_mu",
+              "error_contact_share")
 #: Columns that say which model answered a row: ``model_used`` (auto's choice at that
 #: point, else the model itself) and ``why`` (auto's reason; empty for a named model).
 ANSWER_KEYS = ("model_used", "why")
