@@ -1,7 +1,7 @@
 """Mass balance of each groove (issue 15, Verification): the air a groove takes from its lands
 equals what it gives out through its ends (the entry and the exit) and through the web.
 
-Scaled Reynolds flux (webfem.fem.film2d): J = C e_X - D grad P with the Couette flux
+Scaled Reynolds flux (webfem.fem.forms): J = C e_X - D grad P with the Couette flux
 C = (1 + d P) H and the conductance D = (1 + d P) H^3 + s H^2 (compressibility and slip), and
 the permeation sink S = K (1 + ds P) P, so that div J + S = 0. A groove G is the strip between
 two land/groove steps (the periodic cell: from the step to the symmetry line at the groove's
@@ -41,7 +41,8 @@ from skfem import Basis
 
 from webfem.case import load_case
 from webfem.fem import forms
-from webfem.fem.film2d import film_coefficients, film_residual
+from webfem.fem.forms import FILM, SINK, film_coefficients
+from webfem.fem.weakform import skfem_forms
 from webfem.fem.scaling import FoilParameters
 from webfem.models import fe2d
 from webfem.models.options import FE2DOptions
@@ -61,21 +62,21 @@ def groove_fluxes(problem, u, prm, lo: float, hi: float, basis=None) -> dict:
     web = (problem.wbasis.probes(x.ravel()[None, :]) @ w).reshape(x.shape)
     H = web + forms.departure(x, prm.beta) + problem.grooves.depth_at(z)
     coef = film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], prm.as_form_args())
-    residual = film_residual.assemble(b, P=P, **coef)
+    residual = skfem_forms((FILM, SINK), ("p",))[0].assemble(b, **coef)
     zd = b.doflocs[1]
     tol = 1e-9 * problem.grooves.pitch
     in_g = (zd >= lo - tol) & (zd <= hi + tol)
     phi = b.interpolate(in_g.astype(float))
-    JX, JZ = coef["C"] - coef["D"] * P.grad[0], -coef["D"] * P.grad[1]
+    JX, JZ = -coef["flux_x"], -coef["flux_z"]      # the flux C e_X - D grad P
     zc = z.mean(axis=1)
     groove_cells = (zc > lo) & (zc < hi)
     dx = np.asarray(b.dx)
-    lands = (JX * phi.grad[0] + JZ * phi.grad[1] - coef["S"] * np.asarray(phi)) * dx
+    lands = (JX * phi.grad[0] + JZ * phi.grad[1] - coef["sink"] * np.asarray(phi)) * dx
     fixed = np.zeros(b.N, bool)
     fixed[problem.fixed[problem.fixed < problem.nP]] = True
     return {"lands": float(np.sum(lands[~groove_cells])),
             "ends": float(residual[in_g & fixed].sum()),
-            "sink": float(np.sum((coef["S"] * dx)[groove_cells])),
+            "sink": float(np.sum((coef["sink"] * dx)[groove_cells])),
             "free_nodes": int(np.sum(in_g & ~fixed))}
 
 

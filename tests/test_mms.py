@@ -6,9 +6,9 @@ import pytest
 from skfem import (Basis, ElementLineHermite, ElementQuad1, ElementQuad2, Functional,
                    LinearForm, MeshLine, MeshQuad)
 
-from webfem.fem.film2d import film_coefficients, film_jacobian, film_residual
+from webfem.fem.forms import FILM, SINK, WEB, film_coefficients
 from webfem.fem.newton import newton
-from webfem.fem.web import web_jacobian, web_residual
+from webfem.fem.weakform import skfem_forms
 
 from orders import BEAM_HERMITE, REYNOLDS_2D
 
@@ -65,12 +65,13 @@ def solve_film(n, element):
         P = basis.interpolate(p)
         return P, film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], prm, nt)
 
+    residual, jacobian = skfem_forms((FILM, SINK), ("p",))   # the declared film forms
+
     def F(p):
-        P, c = parts(p)
-        return film_residual.assemble(basis, P=P, **c) - b
+        return residual.assemble(basis, **parts(p)[1]) - b
 
     def J(p):
-        return film_jacobian.assemble(basis, **parts(p)[1])
+        return jacobian.assemble(basis, **parts(p)[1])
 
     free = basis.complement_dofs(basis.get_dofs())
     out = newton(F, J, np.zeros(basis.N), free, tol=1e-12)
@@ -110,10 +111,15 @@ def solve_beam(n):
     x = np.asarray(basis.global_coordinates()[0])
     f = (np.pi**2 + DN * np.pi**4) * np.sin(np.pi * x)
     zero = np.zeros_like(x)
-    coef = {"chi": zero, "load": f, "k_c": zero, "Dn": DN}
+    residual, jacobian = skfem_forms((WEB,), ("w",))          # the declared web forms
+
+    def coef(w):
+        W = basis.interpolate(w)
+        return {"dW": W.grad[0], "bend": DN * W.hess[0, 0], "load": f, "k_c": zero, "Dn": DN}
+
     free = basis.complement_dofs(basis.get_dofs({"left", "right"}).all("u"))
-    out = newton(lambda w: web_residual.assemble(basis, W=basis.interpolate(w), **coef),
-                 lambda w: web_jacobian.assemble(basis, **coef), np.zeros(basis.N), free,
+    out = newton(lambda w: residual.assemble(basis, **coef(w)),
+                 lambda w: jacobian.assemble(basis, **coef(w)), np.zeros(basis.N), free,
                  tol=1e-12)
     W = basis.interpolate(out.u)
     return [np.sqrt(beam_errors.assemble(basis, W=W, k=k)) for k in range(3)]

@@ -1,24 +1,20 @@
-"""Vectorised assembly of the weak forms, in scikit-fem's terms.
+"""The machinery of the vectorised assembly, in scikit-fem's terms.
 
-The decorated forms of :mod:`webfem.fem.forms`, :mod:`webfem.fem.film2d` and
-:mod:`webfem.fem.web` are the definition of the discrete problem; scikit-fem assembles a
-bilinear form by calling its kernel once per pair of local basis functions, which made the
-Jacobian assembly most of the cost of a solve. This module assembles the same integrals from
+scikit-fem assembles a bilinear form by calling its kernel once per pair of local basis
+functions, which made the Jacobian assembly most of the cost of a solve. The assembly that
+:mod:`webfem.fem.weakform` generates from the declared forms computes the same integrals from
 the same scikit-fem objects (a basis's values ``basis.basis``, quadrature weights ``basis.dx``
-and DOF map ``basis.element_dofs``), read once per mesh, with each element contribution
-contracted by ``numpy.einsum`` over all elements at once:
+and DOF map ``basis.element_dofs``), read once per mesh by :class:`BasisData`, with each
+element contribution contracted over all elements at once:
 
     F_i = sum_e sum_q dx[e, q] f[e, q] phi_i[e, q],
     A_ij = sum_e sum_q dx[e, q] a[e, q] phi_i[e, q] psi_j[e, q]
 
-(``f``, ``a``: the coefficient arrays of the forms' own coefficient functions, so the physics
-lives in one place). The sparsity pattern of a Jacobian is built once per mesh
-(:class:`Pattern`); each call only refills the data array of a CSR matrix whose index arrays
-stay the same objects, which lets :func:`webfem.fem.newton.solve_linear` reuse its
-reduction to the free unknowns and its fill-reducing ordering.
-
-``USE_FORMS = True`` (or the models' ``reference=True``) assembles with the decorated forms
-instead: tests/test_fast.py checks the two against each other to 1e-12.
+(:func:`contract_layout`; ``f``, ``a``: the coefficient arrays of the forms' coefficient
+functions, so the physics lives in one place). The sparsity pattern of a Jacobian is built
+once per mesh (:class:`Pattern`); each call only refills the data array of a CSR matrix
+whose index arrays stay the same objects, which lets :class:`webfem.fem.newton.PatternSolver`
+reuse its reduction to the free unknowns and its fill-reducing ordering.
 
 Examples
 --------
@@ -36,11 +32,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["USE_FORMS", "BasisData", "Pattern"]
-
-#: True: the models assemble with the decorated forms (the reference), not this module.
-USE_FORMS = False
-
+__all__ = ["BasisData", "Pattern", "test_layout", "contract_layout"]
 
 class BasisData:
     """A scikit-fem basis read once: per local basis function, its values, gradients and
@@ -184,17 +176,18 @@ def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return ordered[new], inverse
 
 
-def _test_layout(test) -> np.ndarray:
+def test_layout(test) -> np.ndarray:
     """A test-function array, (function, element, point) or stacked (term, function, element,
-    point), as the right operand of :func:`_contract`: (element, [term x] point, function)."""
+    point), as the right operand of :func:`contract_layout`: (element, [term x] point,
+    function)."""
     if np.ndim(test) == 4:
         ns, ni, ne, nq = test.shape
         return np.einsum("sieq->esqi", test).reshape(ne, ns * nq, ni)
     return np.einsum("ieq->eqi", test)
 
 
-def _contract(test_layout, trial) -> np.ndarray:
-    """:meth:`BasisData.bilinear` (``a=None``) with the test side from :func:`_test_layout`.
+def contract_layout(layout, trial) -> np.ndarray:
+    """:meth:`BasisData.bilinear` (``a=None``) with the test side from :func:`test_layout`.
 
     ``np.einsum(..., optimize=True)`` searches a contraction path on every call, which cost
     as much as the contraction for these small arrays; its path for both equations is one
@@ -207,184 +200,4 @@ def _contract(test_layout, trial) -> np.ndarray:
         a = np.einsum("sjeq->ejsq", trial).reshape(ne, nj, ns * nq)
     else:
         a = np.einsum("jeq->ejq", trial)
-    return np.matmul(a, test_layout).transpose(2, 1, 0)
-
-
-class LineAssembler:
-    """The 1-D film + web system (:func:`webfem.fem.forms.residual`, ``jacobian`` and, for P1
-    pressure, the lumped ``sink_residual`` / ``sink_jacobian`` on ``sink_basis``).
-
-    ``basis``: the composite (pressure x Hermite web) basis; ``sink``: True when the Darcy
-    sink is in :func:`~webfem.fem.forms.coefficients` (P2), False when it is lumped apart.
-    """
-
-    def __init__(self, basis, sink_basis=None):
-        from . import forms
-
-        self.forms = forms
-        self.b = b = BasisData(basis, hess=(1,))
-        self.s = BasisData(sink_basis) if sink_basis is not None else None
-        ip, iw = b.index
-        q, gq = b.phi_c[0], b.grad_c[0][:, 0]
-        v, gv, hv = b.phi_c[1], b.grad_c[1][:, 0], b.hess_c[1]
-        self.q, self.gq, self.v, self.gv, self.hv = q, gq, v, gv, hv
-        blocks = [b.pairs(ip, ip), b.pairs(ip, iw), b.pairs(iw, ip), b.pairs(iw, iw)]
-        if self.s is not None:
-            blocks.append(self.s.pairs(self.s.index[0], self.s.index[0]))
-        self.pattern = Pattern(blocks, (b.N, b.N))
-        # the test functions of the Jacobian's blocks, laid out once for _contract (its
-        # operand as numpy's einsum optimiser prepares it on every call)
-        self._t_pp = _test_layout(np.stack([gq, q]))
-        self._t_gq = _test_layout(gq)
-        self._t_v = _test_layout(v)
-        # the state-independent blocks: -dp v, dw' v' and dw'' v'' (times Dn)
-        self.wp = -_contract(self._t_v, q * b.dx)
-        self.ww_membrane = _contract(_test_layout(gv), gv * b.dx)
-        self.ww_bending = _contract(_test_layout(hv), hv * b.dx)
-        self._t_sink = _test_layout(self.s.phi) if self.s is not None else None
-        self._last = None       # (u, args, sink, coefficients) of the last state
-        self._geometry = {}     # beta: the roller's departure and the wrap at the points
-
-    def _coefficients(self, u, args, sink):
-        """The forms' coefficients at the quadrature points for the state u, kept for the
-        last (u, args, sink): Newton asks for the Jacobian at the state whose residual its
-        line search has just evaluated."""
-        last = self._last
-        if last is not None and last[2] == sink and last[1] == args \
-                and np.array_equal(last[0], u):
-            return last[3]
-        b = self.b
-        P, dP = b.interpolate(u, 0)
-        W, dW, ddW = b.interpolate(u, 1, hess=True)
-        beta = args["beta"]
-        if beta not in self._geometry:
-            self._geometry = {beta: (self.forms.departure(b.x, beta),
-                                     self.forms.in_wrap(b.x, beta))}
-        out = (self.forms.coefficients(b.x, P, dP[0], W, args, sink=sink,
-                                       geometry=self._geometry[beta]), dW[0], ddW)
-        self._last = (np.array(u, float, copy=True), args, sink, out)
-        return out
-
-    def residual(self, u, prm, sink: bool) -> np.ndarray:
-        b, dx = self.b, self.b.dx
-        args = prm.as_form_args()
-        c, dW, ddW = self._coefficients(u, args, sink)
-        fp = b.linear(self.gq, c["flux"] * dx)
-        if sink:
-            fp = fp + b.linear(self.q, c["sink"] * dx)
-        fw = (b.linear(self.gv, dW * dx) + b.linear(self.hv, prm.Dn * (ddW - c["chi"]) * dx)
-              - b.linear(self.v, c["load"] * dx))
-        F = b.scatter(fp, b.index[0]) + b.scatter(fw, b.index[1])
-        if self.s is not None and prm.K:
-            s = self.s
-            P = s.interpolate(u, 0)[0]
-            F += s.scatter(s.linear(s.phi, prm.K * (1.0 + prm.ds * P) * P * s.dx), s.index[0])
-        return F
-
-    def jacobian(self, u, prm, newton: bool, sink: bool) -> sp.csr_matrix:
-        b, dx = self.b, self.b.dx
-        c, _, _ = self._coefficients(u, prm.as_form_args(), sink)
-        j = self.forms.jacobian_coefficients(c, newton)
-        q, gq = self.q, self.gq
-        # BasisData.bilinear's products, with the test side prepared once per mesh
-        if sink:
-            pp = _contract(self._t_pp, np.stack([gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx),
-                                                 q * (j["j_sink"] * dx)]))
-        else:
-            pp = _contract(self._t_gq, gq * (j["j_dp"] * dx) + q * (j["j_p"] * dx))
-        pw = _contract(self._t_gq, self.v * (j["j_w"] * dx))
-        ww = (self.ww_membrane + prm.Dn * self.ww_bending
-              + _contract(self._t_v, self.v * (j["k_c"] * dx)))
-        values = [pp, pw, self.wp, ww]
-        if self.s is not None:
-            s = self.s
-            if prm.K:
-                P = s.interpolate(u, 0)[0]
-                a = prm.K * (1.0 + (2.0 if newton else 1.0) * prm.ds * P) * s.dx
-                values.append(_contract(self._t_sink, s.phi * a))
-            else:
-                values.append(np.zeros(self.pattern.sizes[-1]))
-        return self.pattern.matrix(values)
-
-
-class FilmAssembler:
-    """The 2-D film + 1-D web system (:mod:`webfem.fem.film2d`, :mod:`webfem.fem.web` and
-    the transfer matrices ``T`` of :func:`webfem.fem.transfer.quadrature_matrices`).
-
-    Unknowns ``[p (film DOFs), w (web DOFs)]``. Each film cell lies in one web cell, so the
-    web's Hermite functions at a film cell's quadrature points are a dense (4, points) block:
-    the film-web Jacobian block is assembled element by element like the others.
-    """
-
-    def __init__(self, fbasis, wbasis, T, width: float, groove=None):
-        self.f = f = BasisData(fbasis)
-        #: groove depth at the quadrature points (grooved roller), added to the web's gap
-        self.groove = 0.0 if groove is None else np.asarray(groove, float)
-        self.w = w = BasisData(wbasis, hess=(0,))
-        self.T, self.width = T, width
-        self.nP = nP = f.N
-        nel, nq = f.dx.shape
-        # the web cell holding each film cell and the web functions there
-        wd, self.M_loc = T["M_dofs"], T["M_loc"]                    # (4, nel), (4, nel, nq)
-        M = T["M"].tocsr()
-        self.gx, self.gz = f.grad_c[0][:, 0], f.grad_c[0][:, 1]
-        self.gw, self.hw = w.grad_c[0][:, 0], w.hess_c[0]
-        # the width average's load on the web: -(1/width) M^T dx B0, constant (the product
-        # is CSC: to CSR directly, canonical, not through COO)
-        self.Jwp = (-(M.T @ sp.diags(T["dx"]) @ T["B0"]) / width).tocsr()
-        Jwp = self.Jwp.tocoo()
-        blocks = [f.pairs(f.all, f.all),
-                  (np.broadcast_to(f.dofs[:, None, :], (f.dofs.shape[0],) + wd.shape),
-                   np.broadcast_to(wd[None, :, :] + nP, (f.dofs.shape[0],) + wd.shape)),
-                  (Jwp.row + nP, Jwp.col),
-                  w.pairs(w.all, w.all, nP, nP)]
-        self.pattern = Pattern(blocks, (nP + w.N, nP + w.N))
-        self.Jwp_data = Jwp.data
-        self.ww_membrane = w.bilinear(self.gw, self.gw, w.dx)
-        self.ww_bending = w.bilinear(self.hw, self.hw, w.dx)
-        self.tests_pp = f.tests([self.gx, self.gz, f.phi])
-        self.tests_pw = f.tests([self.gx, self.gz])
-
-    def _film(self, u, prm, newton=True):
-        from .film2d import film_coefficients
-        from .forms import departure
-
-        f, T = self.f, self.T
-        p, wv = u[:self.nP], u[self.nP:]
-        P, gP = f.interpolate(p)
-        H = (T["M"] @ wv + departure(T["x"], prm.beta)).reshape(P.shape) + self.groove
-        return P, gP, film_coefficients(H, P, gP[0], gP[1], prm.as_form_args(), newton)
-
-    def _web(self, u, prm):
-        from .web import web_coefficients
-
-        W, dW, ddW = self.w.interpolate(u[self.nP:], 0, hess=True)
-        return dW[0], ddW, web_coefficients(self.w.x, W, prm.as_form_args())
-
-    def residual(self, u, prm) -> np.ndarray:
-        f, w = self.f, self.w
-        P, gP, c = self._film(u, prm)
-        dx = f.dx
-        Fp = f.scatter(f.linear(self.gx, (c["D"] * gP[0] - c["C"]) * dx)
-                       + f.linear(self.gz, c["D"] * gP[1] * dx) + f.linear(f.phi, c["S"] * dx),
-                       f.all)
-        dW, ddW, wc = self._web(u, prm)
-        dx = w.dx
-        Fw = w.scatter(w.linear(self.gw, dW * dx)
-                       + w.linear(self.hw, prm.Dn * (ddW - wc["chi"]) * dx)
-                       - w.linear(w.phi, wc["load"] * dx), w.all)
-        return np.concatenate([Fp, Fw + self.Jwp @ u[:self.nP]])
-
-    def jacobian(self, u, prm, newton: bool = True) -> sp.csr_matrix:
-        f, w = self.f, self.w
-        _, _, c = self._film(u, prm, newton)
-        dx, q, gx, gz = f.dx, f.phi, self.gx, self.gz
-        jD, jS = c["jD"] * dx, c["jS"] * dx
-        jX, jZ = c["jX"] * dx, c["jZ"] * dx
-        pp = f.contract(self.tests_pp, [gx * jD + q * jX, gz * jD + q * jZ, q * jS])
-        pw = f.contract(self.tests_pw, [self.M_loc * (c["hX"] * dx),
-                                        self.M_loc * (c["hZ"] * dx)])
-        _, _, wc = self._web(u, prm)
-        ww = (self.ww_membrane + prm.Dn * self.ww_bending
-              + w.bilinear(w.phi, w.phi, wc["k_c"] * w.dx))
-        return self.pattern.matrix([pp, pw, self.Jwp_data, ww])
+    return np.matmul(a, layout).transpose(2, 1, 0)

@@ -1,48 +1,74 @@
-"""Weak forms of the infinitely wide foil bearing with permeation and asperity contact.
+"""The weak forms of the foil bearing, each declared once, and the coefficients that carry the
+physics into them.
 
-Scaled variables (Eshel-Elrod): X = x / (R eps^(1/3)), H = h / (R eps^(2/3)),
-P = (p - p_a) R / T. Unknowns: film pressure P and web deflection W; the gap is
-H = W + D(X) with the roller's departure D = (|X| - beta/2)^2 / 2 outside the wrap, 0 inside.
+Scaled variables (Eshel-Elrod): X = x / (R eps^(1/3)), Z = z / (R eps^(1/3)) across the width,
+H = h / (R eps^(2/3)), P = (p - p_a) R / T. Unknowns: the film pressure P (field "p") and the
+web deflection W (field "w"); the web's gap is H_web = W + D(X) with the roller's departure
+D = (|X| - beta/2)^2 / 2 outside the wrap, 0 inside, and the film's gap H = H_web + Delta(Z)
+(Delta the groove depth on a grooved roller, :mod:`webfem.fem.grooves`; 0 on a land).
 
-Reynolds, compressible, with first-order slip and the Darcy sink through the web (physics.md,
-divided by p_a):
+**Film** (:data:`FILM` + :data:`SINK`): Reynolds, compressible, with first-order slip and the
+Darcy sink through the web (physics.md, divided by p_a):
 
-    (((1 + d P) H^3 + s H^2) P')' = ((1 + d P) H)' + K (1 + ds P) P,     P = 0 at both ends,
+    div(((1 + d P) H^3 + s H^2) grad P) = d((1 + d P) H)/dX + K (1 + ds P) P,
 
-d = T / (R p_a) (0 for the incompressible limit), K = 12 k / (R t eps^(4/3)); s = 6 a
-lambda_a / (R eps^(2/3)) Burgdorfer's slip term (0 without slip); ds = d/2 for isothermal
-Darcy flow through the web (density (p + p_a)/2), d for the paper's sink (density p).
+weak, with test function q: int (D P_X - C) q_X + D P_Z q_Z + K (1 + ds P) P q, where
+D = (1 + d P) H_f^3 + s H_f^2 (Poiseuille conductance with slip) and C = (1 + d P) H_f
+(Couette flux); H_f is the film's gap floored smoothly (:func:`film_gap`: where the web rests
+on its asperities air still seeps through the roughness). d = T / (R p_a) (0: the
+incompressible limit), K = 12 k / (R t eps^(4/3)), s = 6 a lambda_a / (R eps^(2/3)), ds = d/2
+for isothermal Darcy flow through the web, d for the paper's sink. P = 0 on the ends and the
+web edges; dP/dZ = 0 on symmetry lines. In 1-D the Z terms are absent.
 
-Web equilibrium (membrane with tension, beam with bending when Dn > 0):
+**Web** (:data:`WEB` + :data:`COUPLING`): the web's equilibrium (paper's Eq. 16), a membrane
+with tension and, when Dn > 0, a beam:
 
-    P + Pc(H) = chi - W'' + Dn (H'''' ),   Pc = c exp(-H / S),   W = 0 at both ends,
+    Pbar + Pc(H_web) = chi - W'' + Dn (H_web'''')
 
-chi = 1 in the wrap (the T/R term) and 0 outside; Dn = D / (T (R eps^(1/3))^2);
-c = E_b sigma R / (2 t T) and S = sigma / (R eps^(2/3)) scale Eq. 10's contact pressure.
-Bending acts on the web's true curvature 1 - H'' (the web is flat when unloaded), which in the
-weak form is Dn (W'' - chi) v'': couples at the wrap edges, and the natural end condition
-W'' = 0 of Eq. 20.
+weak, with test function v: int W' v' + Dn (W'' - chi) v'' - (Pc - chi) v - Pbar v, where
+chi = 1 in the wrap (the T/R term) and 0 outside, Dn = D / (T (R eps^(1/3))^2), Pc the asperity
+contact pressure (:func:`contact_law`, on the lands only of a grooved roller: times the land
+fraction) and Pbar the film pressure averaged over the width (1/width) int P dZ, which the
+coupling form integrates over the film's points. W = 0 at both ends; bending acts on the
+web's true curvature, so W'' = 0 there is natural.
 
-Weak residuals (test functions q for P, v for W; boundary terms vanish by the conditions):
-
-    F_p = int ((1 + d P) H^3 + s H^2) P' q' - (1 + d P) H q' + K (1 + ds P) P q
-    F_w = int W' v' + Dn (W'' - chi) v'' - (P + Pc(H) - chi) v
-
-and their exact Jacobian. The film uses a smooth maximum of H and a floor H_f (a fraction of
-the roughness; :func:`film_gap`): where the web rests on its asperities air still seeps
-through the roughness, and a film that vanished would make the Reynolds operator singular.
-
-The state enters the forms through :func:`coefficients`, evaluated once per assembly at the
-quadrature points and passed as keyword arguments of ``assemble``.
+Each form is data (:mod:`webfem.fem.weakform`): its residual terms and Jacobian blocks name
+their coefficients, computed here by :func:`film_coefficients`, :func:`web_coefficients` and
+:func:`coupling_coefficients` at the quadrature points. Adding a physics term is one line in a
+declaration and one in its coefficients function; the scikit-fem forms and the vectorised
+assembly are both generated from the declarations.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from scipy.special import erfc
-from skfem import BilinearForm, LinearForm
 
-__all__ = ["film_gap", "contact_law", "coefficients", "jacobian_coefficients", "residual", "jacobian", "sink_residual", "sink_jacobian", "departure", "in_wrap"]
+from .weakform import Block, Term, WeakForm
+
+__all__ = ["FILM", "SINK", "WEB", "COUPLING", "film_coefficients", "web_coefficients",
+           "coupling_coefficients", "film_gap", "contact_law", "departure", "in_wrap"]
+
+#: Reynolds' flux terms and their derivatives in P and in the web (dH/dW = 1).
+FILM = WeakForm("film", ("p", "w"),
+                terms=(Term("p", "dx", "flux_x"), Term("p", "dz", "flux_z")),
+                blocks=(Block("p", "dx", "p", "dx", "jD"), Block("p", "dx", "p", "val", "jX"),
+                        Block("p", "dz", "p", "dz", "jD"), Block("p", "dz", "p", "val", "jZ"),
+                        Block("p", "dx", "w", "val", "hX"),
+                        Block("p", "dz", "w", "val", "hZ")))
+#: The Darcy sink through the web, apart so it can be lumped (P1: nodal quadrature keeps the
+#: film operator an M-matrix where the sink dominates, so the pressure cannot oscillate).
+SINK = WeakForm("sink", ("p",), terms=(Term("p", "val", "sink"),),
+                blocks=(Block("p", "val", "p", "val", "jS"),))
+#: The web's membrane, bending and contact terms.
+WEB = WeakForm("web", ("w",),
+               terms=(Term("w", "dx", "dW"), Term("w", "dxx", "bend"),
+                      Term("w", "val", "-load")),
+               blocks=(Block("w", "dx", "w", "dx", 1.0), Block("w", "dxx", "w", "dxx", "Dn"),
+                       Block("w", "val", "w", "val", "k_c")))
+#: The film's load on the web, the width average of P, integrated over the film's points.
+COUPLING = WeakForm("coupling", ("p", "w"), terms=(Term("w", "val", "-pbar"),),
+                    blocks=(Block("w", "val", "p", "val", "-inv_width"),))
 
 
 def departure(x, beta):
@@ -79,85 +105,49 @@ def contact_law(H, prm):
     return Pc, Pc / S
 
 
-def coefficients(x, P, dP, W, prm, sink: bool = True, geometry=None) -> dict:
-    """Coefficient arrays of the residual and Jacobian at quadrature points.
-
-    Computed once per assembly (the forms below only multiply them with basis functions:
-    scikit-fem calls a form once per pair of basis functions). ``prm`` holds
-    ``beta, d, K, Dn, c, S, contact, floor``. ``sink=False`` leaves the Darcy sink out (it
-    is then assembled apart with nodal quadrature, :func:`sink_residual`). ``geometry``:
-    ``(departure(x, beta), in_wrap(x, beta))`` when the caller keeps them (they depend on
-    the mesh only).
-    """
-    D, chi = geometry if geometry is not None else (departure(x, prm["beta"]),
-                                                    in_wrap(x, prm["beta"]))
-    H = W + D
-    Hf, above = film_gap(H, prm["floor"])
-    d, s = prm["d"], prm.get("slip", 0.0)
+def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
+    """The coefficients of :data:`FILM` and :data:`SINK` at quadrature points: the film's
+    gap ``H`` there (web gap plus groove depth), the pressure ``P`` and its gradient ``PX``,
+    ``PZ`` (0 in 1-D). ``newton=False`` gives Picard's operator instead of the exact
+    Jacobian: rho = 1 + d P and H^3 frozen at the state."""
+    d, K, s = prm["d"], prm["K"], prm.get("slip", 0.0)
     ds = prm.get("ds", d)
+    Hf, above = film_gap(H, prm["floor"])
     rho, rho_s = 1.0 + d * P, 1.0 + ds * P
-    Pc, kc = contact_law(H, prm)
     Hf2 = Hf**2
     Hf3 = Hf2 * Hf
-    diffusion = rho * Hf3 + s * Hf2                 # Poiseuille conductance with slip
+    diffusion = rho * Hf3 + s * Hf2           # Poiseuille conductance with slip
+    dD = 3.0 * rho * Hf2 + 2.0 * s * Hf       # its derivative in H
+    nt = 1.0 if newton else 0.0
     return {
-        "flux": diffusion * dP - rho * Hf,          # F_p = flux q'
-        "load": P + Pc - chi,                       # F_w = W'v' + Dn (W'' - chi) v'' - load v
-        "chi": chi,
-        "a_p": d * Hf3 * dP - d * Hf,               # d flux / dP (through rho)
-        "a_dp": diffusion,                          # d flux / dP'
-        "a_w": -above * rho,                        # d flux / dW (through the Couette flux)
-        "a_w3": above * (3.0 * rho * Hf2 + 2.0 * s * Hf) * dP,  # d flux / dW (conductance)
-        "k_c": kc,                                  # -d load / dW (contact stiffness)
-        "sink": prm["K"] * rho_s * P if sink else 0.0,         # F_p += sink q
-        "a_sink": prm["K"] * rho_s if sink else 0.0,
-        "a_sink_p": prm["K"] * ds * P if sink else 0.0,
+        "flux_x": diffusion * PX - rho * Hf,  # Poiseuille minus Couette along X
+        "flux_z": diffusion * PZ,
+        "sink": K * rho_s * P,
+        # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 ds P) dp
+        "jD": diffusion,
+        "jX": nt * (d * Hf3 * PX - d * Hf),
+        "jZ": nt * d * Hf3 * PZ,
+        "jS": K * (rho_s + nt * ds * P),
+        # dF/dH, which is dF/dW: (dD/dH grad P) . grad q - rho q_X
+        "hX": above * (nt * dD * PX - rho),
+        "hZ": above * nt * dD * PZ,
     }
 
 
-@LinearForm
-def residual(q, v, w):
-    """F_p(q) + F_w(v) at the state whose :func:`coefficients` and ``W`` are in ``w``."""
-    W = w["W"]
-    return (w["flux"] * q.grad[0] + w["sink"] * q + W.grad[0] * v.grad[0]
-            + w["Dn"] * (W.hess[0, 0] - w["chi"]) * v.hess[0, 0] - w["load"] * v)
+def web_coefficients(x, W, dW, ddW, prm, geometry=None) -> dict:
+    """The coefficients of :data:`WEB` at quadrature points x: the web deflection ``W`` and
+    its first two X-derivatives there. ``geometry``: ``(departure(x, beta), in_wrap(x,
+    beta))`` when the caller keeps them (they depend on the mesh only). On a grooved roller
+    the asperities touch the lands only (``prm['land']``, the land fraction)."""
+    D, chi = geometry if geometry is not None else (departure(x, prm["beta"]),
+                                                    in_wrap(x, prm["beta"]))
+    Pc, kc = contact_law(W + D, prm)
+    land = prm.get("land", 1.0)
+    return {"dW": dW, "bend": prm["Dn"] * (ddW - chi), "load": land * Pc - chi,
+            "k_c": land * kc, "Dn": prm["Dn"], "chi": chi}
 
 
-def jacobian_coefficients(coef: dict, newton: bool = True) -> dict:
-    """The arrays :func:`jacobian` multiplies, from :func:`coefficients`.
-
-    ``newton=True``: the exact derivative. ``newton=False``: the Picard operator, with the
-    film's coefficients rho = 1 + d P and H^3 frozen at the current state (the asperity
-    contact stays linearised: it is local and stiff).
-    """
-    nt = 1.0 if newton else 0.0
-    return {"j_p": nt * coef["a_p"], "j_dp": coef["a_dp"], "j_w": coef["a_w"] + nt * coef["a_w3"],
-            "j_sink": coef["a_sink"] + nt * coef["a_sink_p"], "k_c": coef["k_c"]}
-
-
-@BilinearForm
-def jacobian(dp, dw, q, v, w):
-    """Derivative of :func:`residual` in the direction (dp, dw), with the coefficient arrays
-    of :func:`jacobian_coefficients` (exact, or Picard's frozen-coefficient operator)."""
-    return ((w["j_p"] * dp + w["j_dp"] * dp.grad[0] + w["j_w"] * dw) * q.grad[0]
-            + w["j_sink"] * dp * q + dw.grad[0] * v.grad[0]
-            + w["Dn"] * dw.hess[0, 0] * v.hess[0, 0] + w["k_c"] * dw * v - dp * v)
-
-
-@LinearForm
-def sink_residual(q, v, w):
-    """The Darcy sink K (1 + ds P) P q of F_p, kept apart so it can be lumped (nodal
-    quadrature); ``w["d"]`` carries ds.
-
-    With P1 pressure and nodal quadrature the film operator for a given gap is an M-matrix,
-    so the pressure cannot oscillate where the film is thin and the sink dominates (a landed
-    web: reaction-to-diffusion ratio K dx^2 / H^3 of order 100 at 10 m/s on newsprint).
-    """
-    P = w["P"]
-    return w["K"] * (1.0 + w["d"] * P) * P * q
-
-
-@BilinearForm
-def sink_jacobian(dp, dw, q, v, w):
-    """Derivative of :func:`sink_residual` (Picard, ``newton = 0``: rho frozen)."""
-    return w["K"] * (1.0 + (1.0 + w["newton"]) * w["d"] * w["P"]) * dp * q
+def coupling_coefficients(P, width: float) -> dict:
+    """The coefficients of :data:`COUPLING`: the film pressure at the film's points over the
+    width it is averaged on (1 in 1-D)."""
+    return {"pbar": P / width, "inv_width": 1.0 / width}

@@ -23,7 +23,15 @@ import scipy.sparse.linalg as spla
 
 from ..progress import report
 
-__all__ = ["NewtonResult", "newton", "solve_linear", "PatternSolver", "SOLVER"]
+__all__ = ["NewtonResult", "newton", "norm2", "solve_linear", "PatternSolver", "SOLVER"]
+
+
+def norm2(r) -> float:
+    """||r||_2 by numpy's pairwise sum: the same bits whatever the number of BLAS threads
+    (BLAS's nrm2 splits a long vector among its threads, so a solve's residual, and the
+    tolerance test on it, changed in the last bit between a process and its workers)."""
+    r = np.asarray(r, float)
+    return float(np.sqrt(np.add.reduce(r * r)))
 
 
 def solve_linear(A, b) -> np.ndarray:
@@ -163,7 +171,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     u = np.array(u0, dtype=float, copy=True)
     free = np.arange(u.size) if free is None else np.asarray(free)
     r = F(u)[free]
-    norm = float(np.linalg.norm(r))
+    norm = norm2(r)
     history = [norm]
     if np.isfinite(norm):
         tol = max(tol, rtol * norm)
@@ -198,7 +206,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
             trial[free] += alpha * du
             with np.errstate(all="ignore"):   # a wild trial is rejected below, not reported
                 r_trial = F(trial)[free]
-                n_trial = float(np.linalg.norm(r_trial))
+                n_trial = norm2(r_trial)
             if np.isfinite(n_trial) and (n_trial < norm or n_trial <= tol):
                 break
             if at_floor:
@@ -234,5 +242,5 @@ def _chord_step(F, solve, u, r, free):
     with np.errstate(all="ignore"):
         trial[free] -= solve(r)
         r_trial = F(trial)[free]
-        n_trial = float(np.linalg.norm(r_trial))
+        n_trial = norm2(r_trial)
     return trial, r_trial, (n_trial if np.isfinite(n_trial) else np.inf)

@@ -20,6 +20,7 @@ from typing import Callable
 import numpy as np
 
 from ..progress import report
+from .newton import norm2
 
 __all__ = ["PicardResult", "picard", "frozen_coefficient_picard"]
 
@@ -142,7 +143,7 @@ def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True
         v = u.copy()
         v[free] = x
         F = problem.residual(v, prm)[free]
-        last["norm"] = float(np.linalg.norm(F))
+        last["norm"] = norm2(F)
         if not np.isfinite(last["norm"]):
             raise FloatingPointError("residual not finite")
         A = problem.jacobian(v, prm, newton=False).tocsr()[free][:, free].tocsc()
@@ -161,6 +162,6 @@ def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True
         out.history = first.history + out.history
         out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
     u[free] = out.x
-    res = float(np.linalg.norm(problem.residual(u, prm)[free]))
+    res = norm2(problem.residual(u, prm)[free])
     return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
                    history=out.history, reason=out.reason, omegas=out.omegas)

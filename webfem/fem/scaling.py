@@ -1,8 +1,7 @@
 """The scaled parameters of a case: what the FE forms see (Eshel-Elrod scaling).
 
 X = x / (R eps^(1/3)), H = h / (R eps^(2/3)), P = (p - p_a) R / T with eps = 6 eta U / T.
-The forms in :mod:`webfem.fem.forms`, :mod:`webfem.fem.film2d` and :mod:`webfem.fem.web`
-take these numbers, never a case.
+The forms in :mod:`webfem.fem.forms` take these numbers, never a case.
 
 Examples
 --------
@@ -36,7 +35,7 @@ class FoilParameters:
     below which Reynolds sees a smooth floor (from_case takes it as a fraction of sigma);
     H_c: the scaled gap at which contact alone carries T/R; land: the land fraction a/p_g of
     a grooved roller (1 smooth): asperity contact acts on the lands only, so the web sees
-    land Pc(H) (:func:`webfem.fem.web.web_coefficients`).
+    land Pc(H) (:func:`webfem.fem.forms.web_coefficients`).
     """
 
     beta: float

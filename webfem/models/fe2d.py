@@ -24,14 +24,12 @@ Examples
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import Basis, ElementLineHermite, ElementQuad1, ElementQuad2
 
 from ..case import Case
 from ..errors import InputError
-from ..fem import fast, forms
-from ..fem.film2d import film_coefficients, film_jacobian, film_residual
+from ..fem import forms
 from ..fem.mesh import line_mesh
 from ..fem.newton import newton
 from ..fem.picard import frozen_coefficient_picard
@@ -40,7 +38,7 @@ from ..fem.grooves import GroovePattern, groove_nodes
 from ..fem.hermite import LineProbes
 from ..fem.transfer import (film_mesh, interpolate_values, quadrature_matrices,
                              tensor_interpolation, width_nodes)
-from ..fem.web import web_coefficients, web_jacobian, web_residual
+from ..fem.systems import FilmSystem, width_load
 from ..physics.friction import friction_for
 from ..progress import stage
 from ..result import Film, Result
@@ -102,7 +100,7 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass = None
-        self._assembler = None
+        self._system = None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
@@ -119,58 +117,22 @@ class FoilBearing2D:
     def _split(self, u):
         return u[:self.nP], u[self.nP:]
 
-    def _film_state(self, u, prm):
-        p, w = self._split(u)
-        T = self.T
-        H = (T["M"] @ w + forms.departure(T["x"], prm.beta)).reshape(-1, self.qshape)
-        P = self.fbasis.interpolate(p)
-        H = H + self.groove_q
-        return P, H
-
     @property
-    def assembler(self) -> fast.FilmAssembler:
-        """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
-        if self._assembler is None:
-            self._assembler = fast.FilmAssembler(self.fbasis, self.wbasis, self.T, self.width,
-                                                 self.groove_q)
-        return self._assembler
+    def system(self) -> FilmSystem:
+        """The assembly of this mesh's film + web system (:class:`webfem.fem.systems.
+        FilmSystem`), built on first use."""
+        if self._system is None:
+            self._system = FilmSystem(self.fbasis, self.wbasis, self.T, self.width,
+                                      self.groove_q)
+        return self._system
 
-    def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
-        """The coupled residual; ``reference=True`` (or ``fast.USE_FORMS``) assembles it with
-        the decorated forms, otherwise :mod:`webfem.fem.fast` does."""
-        if not (reference or fast.USE_FORMS):
-            return self.assembler.residual(u, prm)
-        p, w = self._split(u)
-        P, H = self._film_state(u, prm)
-        args = prm.as_form_args()
-        coef = film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], args)
-        Fp = film_residual.assemble(self.fbasis, P=P, **coef)
-        W = self.wbasis.interpolate(w)
-        Fw = web_residual.assemble(self.wbasis, W=W, Dn=prm.Dn,
-                                   **web_coefficients(self._xw, np.asarray(W), args))
-        Pq = np.asarray(P).ravel()
-        Fw -= self.T["M"].T @ (self.T["dx"] * Pq) / self.width
-        return np.concatenate([Fp, Fw])
+    def residual(self, u, prm: FoilParameters) -> np.ndarray:
+        """The coupled residual."""
+        return self.system.residual(u, prm)
 
-    def jacobian(self, u, prm: FoilParameters, newton: bool = True, reference: bool = False):
-        """Exact Jacobian, or (``newton=False``) Picard's; ``reference`` as in
-        :meth:`residual`."""
-        if not (reference or fast.USE_FORMS):
-            return self.assembler.jacobian(u, prm, bool(newton))
-        p, w = self._split(u)
-        P, H = self._film_state(u, prm)
-        args = prm.as_form_args()
-        coef = film_coefficients(H, np.asarray(P), P.grad[0], P.grad[1], args, newton)
-        T = self.T
-        Jpp = film_jacobian.assemble(self.fbasis, **coef)
-        dx = T["dx"]
-        Jpw = (T["BX"].T @ sp.diags(coef["hX"].ravel() * dx) @ T["M"]
-               + T["BZ"].T @ sp.diags(coef["hZ"].ravel() * dx) @ T["M"])
-        W = self.wbasis.interpolate(w)
-        Jww = web_jacobian.assemble(self.wbasis, Dn=prm.Dn,
-                                    **web_coefficients(self._xw, np.asarray(W), args))
-        Jwp = -(T["M"].T @ sp.diags(dx) @ T["B0"]) / self.width
-        return sp.bmat([[Jpp, Jpw], [Jwp, Jww]], format="csr")
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True):
+        """Exact Jacobian, or (``newton=False``) Picard's."""
+        return self.system.jacobian(u, prm, bool(newton))
 
     # -- fields ---------------------------------------------------------------------------
     def at(self, X, dofs) -> np.ndarray:
@@ -199,8 +161,7 @@ class FoilBearing2D:
         # admissibility): the projection is kept for the last film DOFs
         if self._average is None or not np.array_equal(self._average[0], p):
             Pq = interpolate_values(self.fbasis, p).ravel()
-            self._average = (p.copy(), self._mass.solve(
-                self.T["M"].T @ (self.T["dx"] * Pq) / self.width))
+            self._average = (p.copy(), self._mass.solve(width_load(self.T, Pq, self.width)))
         return self._average[1].copy()
 
     def land_average(self, u) -> np.ndarray:
@@ -210,7 +171,7 @@ class FoilBearing2D:
         Pq = interpolate_values(self.fbasis, self._split(u)[0]).ravel()
         width = float(np.sum(self.T["dx"] * land)) / float(np.sum(self.T["dx"])) * self.width
         self.width_average(u)          # builds the mass matrix
-        return self._mass.solve(self.T["M"].T @ (self.T["dx"] * land * Pq) / width)
+        return self._mass.solve(width_load(self.T, land * Pq, width))
 
     def pressure(self, u, X) -> np.ndarray:
         """Width-averaged film pressure at X (through :meth:`width_average`)."""

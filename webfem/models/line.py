@@ -1,8 +1,8 @@
 """The 1-D discrete problem: the infinitely wide foil bearing on one mesh.
 
 Film pressure (P2 or P1 Lagrange) and web deflection (cubic Hermite) in one composite
-scikit-fem basis, built once per mesh; the residual and exact Jacobian of
-:mod:`webfem.fem.forms` (assembled by :mod:`webfem.fem.fast`, checked against the forms);
+scikit-fem basis, built once per mesh; the residual and exact Jacobian of the declared weak
+forms (:mod:`webfem.fem.forms`, assembled by :class:`webfem.fem.systems.LineSystem`);
 Newton with continuation from the Eshel-Elrod problem, and the two Picard schemes. The model
 around it (start, refinement, summary) is :mod:`webfem.models.fe1d` on the shared driver.
 """
@@ -13,12 +13,13 @@ import numpy as np
 from skfem import Basis, ElementLineP1, ElementLineP2
 
 from ..errors import InputError
-from ..fem import fast, forms
+from ..fem import forms
 from ..fem.hermite import Composite, HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
-from ..fem.newton import newton
+from ..fem.newton import newton, norm2
 from ..fem.picard import frozen_coefficient_picard, picard
 from ..fem.scaling import FoilParameters
+from ..fem.systems import LineSystem
 from ..progress import stage
 from .options import FE1DOptions
 
@@ -65,77 +66,35 @@ class FoilBearing1D:
         # the composite basis: no probe matrix, no split basis
         self._probe_p = LineProbes(self.basis, component=0)
         self._probe_w = LineProbes(self.basis, component=1)
-        self._assembler = None
-        self._split, self._x = {}, {}        # of the reference assembly, built on first use
-
-    def _split_of(self, basis):
-        """``basis.split_bases()`` and its quadrature points' X, built once (building them
-        is most of the cost of interpolating a state with the reference forms)."""
-        if id(basis) not in self._split:
-            self._split[id(basis)] = basis.split_bases()
-            self._x[id(basis)] = np.asarray(basis.global_coordinates()[0])
-        return self._split[id(basis)], self._x[id(basis)]
-
-    @property
-    def pbasis(self):
-        """The pressure part of :attr:`basis` (scikit-fem's split basis)."""
-        return self._split_of(self.basis)[0][0]
-
-    @property
-    def wbasis(self):
-        """The web part of :attr:`basis` (scikit-fem's split basis)."""
-        return self._split_of(self.basis)[0][1]
+        self.system = LineSystem(self.basis, self.sink_basis if order == 1 else None)
 
     @property
     def n_dofs(self) -> int:
         return self.basis.N
 
-    def _state(self, basis, u, prm: FoilParameters, sink: bool = False,
-               newton: bool | None = None) -> dict:
-        """Form arguments at ``basis``'s quadrature points for the state ``u``: for the
-        residual (``newton=None``), or for the Jacobian (exact if ``newton`` else Picard's)."""
-        (bp, bw), x = self._split_of(basis)
-        P = bp.interpolate(u[self.iP])
-        if sink:
-            return {"P": np.asarray(P), "K": prm.K, "d": prm.ds,
-                    "newton": 1.0 if newton or newton is None else 0.0}
-        W = bw.interpolate(u[self.iW_all])
-        coef = forms.coefficients(x, np.asarray(P), P.grad[0], np.asarray(W),
-                                  prm.as_form_args(), sink=self.order == 2)
-        if newton is None:
-            return {"W": W, "Dn": prm.Dn, **coef}
-        return {"Dn": prm.Dn, **forms.jacobian_coefficients(coef, newton)}
+    @property
+    def pbasis(self):
+        """The pressure part of :attr:`basis` (scikit-fem's split basis, built on first use)."""
+        return self._split_bases()[0]
 
     @property
-    def assembler(self) -> fast.LineAssembler:
-        """The vectorised assembly of this mesh (:mod:`webfem.fem.fast`), built on first use."""
-        if self._assembler is None:
-            self._assembler = fast.LineAssembler(self.basis, self.sink_basis
-                                                 if self.order == 1 else None)
-        return self._assembler
+    def wbasis(self):
+        """The web part of :attr:`basis` (scikit-fem's split basis)."""
+        return self._split_bases()[1]
 
-    def residual(self, u, prm: FoilParameters, reference: bool = False) -> np.ndarray:
-        """The coupled residual; ``reference=True`` (or ``fast.USE_FORMS``) assembles it with
-        the decorated forms, otherwise :mod:`webfem.fem.fast` does."""
-        if not (reference or fast.USE_FORMS):
-            return self.assembler.residual(u, prm, sink=self.order == 2)
-        F = forms.residual.assemble(self.basis, **self._state(self.basis, u, prm))
-        if prm.K and self.order == 1:
-            sb = self.sink_basis
-            F += forms.sink_residual.assemble(sb, **self._state(sb, u, prm, sink=True))
-        return F
+    def _split_bases(self):
+        if getattr(self, "_split", None) is None:
+            self._split = self.basis.split_bases()
+        return self._split
 
-    def jacobian(self, u, prm: FoilParameters, newton: bool = True, reference: bool = False):
+    def residual(self, u, prm: FoilParameters) -> np.ndarray:
+        """The coupled residual (:class:`webfem.fem.systems.LineSystem`)."""
+        return self.system.residual(u, prm)
+
+    def jacobian(self, u, prm: FoilParameters, newton: bool = True):
         """Exact Jacobian, or (``newton=False``) the Picard operator with frozen film
-        coefficients; ``reference`` as in :meth:`residual`."""
-        if not (reference or fast.USE_FORMS):
-            return self.assembler.jacobian(u, prm, bool(newton), sink=self.order == 2)
-        J = forms.jacobian.assemble(self.basis, **self._state(self.basis, u, prm, False,
-                                                              bool(newton)))
-        if prm.K and self.order == 1:
-            sb = self.sink_basis
-            J += forms.sink_jacobian.assemble(sb, **self._state(sb, u, prm, True, bool(newton)))
-        return J
+        coefficients."""
+        return self.system.jacobian(u, prm, bool(newton))
 
     def initial_guess(self, prm: FoilParameters, H0: float = 0.643) -> np.ndarray:
         """A large-gap start: the Eshel-Elrod film H0 at the inlet edge, falling along the wrap
@@ -317,7 +276,7 @@ class FoilBearing1D:
         # pressure consistent with the final web
         film = sub_newton(u, iP)
         u = film.u
-        res = float(np.linalg.norm(self.residual(u, prm)[self.free]))
+        res = norm2(self.residual(u, prm)[self.free])
         return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
                        history=out.history, reason=out.reason, omegas=out.omegas,
                        block_iterations=counts)

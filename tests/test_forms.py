@@ -1,15 +1,18 @@
-"""The vectorised assembly (webfem.fem.fast) against the decorated weak forms it implements.
+"""Each weak form declared once (webfem.fem.forms), both assemblies generated from it: the
+vectorised one (webfem.fem.weakform.FastForm) against scikit-fem's forms (and, for the blocks
+that cross from the 2-D film to the 1-D web, the transfer matrices).
 
 Residual and Jacobian of the 1-D (P1 and P2 pressure, Hermite web) and 2-D (Q1 and Q2 film,
-Hermite web) systems at a state that is not a solution, with contact, compressibility,
-permeation (with the sink's own compressibility), slip and bending all non-zero, exact
-Newton and Picard's frozen-coefficient operator.
+Hermite web; smooth, grooved full width and grooved periodic cell) systems at a state that
+is not a solution, with contact, compressibility, permeation (with the sink's own
+compressibility), slip and bending all non-zero, exact Newton and Picard's
+frozen-coefficient operator, every declared block and term on.
 """
 
 import numpy as np
 import pytest
 
-from webfem.fem import fast
+from webfem.fem import fast, forms
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
 from webfem.fem.transfer import width_nodes
@@ -44,7 +47,7 @@ def line(request):
 
 def test_line_residual(line):
     p, u = line
-    fast_F, ref_F = p.residual(u, PRM), p.residual(u, PRM, reference=True)
+    fast_F, ref_F = p.residual(u, PRM), p.system.reference_residual(u, PRM)
     assert np.max(np.abs(ref_F)) > 1e-3            # the state is not a solution
     assert _relative(fast_F, ref_F) < TOL
 
@@ -53,7 +56,7 @@ def test_line_residual(line):
 def test_line_jacobian(line, newton):
     p, u = line
     A = p.jacobian(u, PRM, newton).toarray()
-    B = p.jacobian(u, PRM, newton, reference=True).toarray()
+    B = p.system.reference_jacobian(u, PRM, newton).toarray()
     assert _relative(A, B) < TOL
 
 
@@ -83,7 +86,7 @@ def film(request):
 
 def test_film_residual(film):
     p, u = film
-    fast_F, ref_F = p.residual(u, PRM), p.residual(u, PRM, reference=True)
+    fast_F, ref_F = p.residual(u, PRM), p.system.reference_residual(u, PRM)
     assert np.max(np.abs(ref_F)) > 1e-3
     assert _relative(fast_F[:p.nP], ref_F[:p.nP]) < TOL
     assert _relative(fast_F[p.nP:], ref_F[p.nP:]) < TOL
@@ -93,20 +96,46 @@ def test_film_residual(film):
 def test_film_jacobian(film, newton):
     p, u = film
     A = p.jacobian(u, PRM, newton).toarray()
-    B = p.jacobian(u, PRM, newton, reference=True).toarray()
+    B = p.system.reference_jacobian(u, PRM, newton).toarray()
     assert _relative(A, B) < TOL
 
 
-def test_module_flag_selects_the_forms(monkeypatch):
-    """``fast.USE_FORMS`` routes the models' assembly through the decorated forms."""
-    p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
-    u = _line_state(p)
-    calls = []
-    monkeypatch.setattr(type(p), "assembler", property(lambda self: calls.append(1)))
-    monkeypatch.setattr(fast, "USE_FORMS", True)
-    p.residual(u, PRM)
-    p.jacobian(u, PRM)
-    assert calls == []
+def test_every_declared_block_and_term_is_assembled_and_matters():
+    """Each term and block of every declaration contributes on the systems above: dropping
+    it from the generated assembly changes the result (so the comparisons above cover every
+    one of them)."""
+    from webfem.fem.weakform import FastForm, Part, WeakForm
+
+    X = graded_nodes(PRM.beta, 6.0, level=0)
+    p1 = FoilBearing1D(X, order=2)
+    u1 = _line_state(p1)
+    p2 = FoilBearing2D(X, width_nodes(3.0), order=2)
+    u2 = p2.start_from_line(p1, u1, PRM)
+    seen = set()
+    for p, u in ((p1, u1), (p2, u2)):
+        sys_ = p.system
+        values = sys_.values(u, PRM)
+        full_F, full_J = sys_.fast.residual(values), sys_.fast.jacobian(values).toarray()
+        for k, part in enumerate(sys_.fast.parts):
+            for form in part.forms:
+                for item in form.terms + form.blocks:
+                    if item.op == "dz" and "dz" not in part.spaces[item.field].ops:
+                        continue
+                    kept = WeakForm(form.name, form.fields,
+                                    tuple(t for t in form.terms if t is not item),
+                                    tuple(b for b in form.blocks if b is not item))
+                    parts = [Part(tuple(kept if f is form else f for f in q.forms), q.spaces,
+                                  q.dx) if i == k else q
+                             for i, q in enumerate(sys_.fast.parts)]
+                    other = FastForm(parts, sys_.fast.n)
+                    changed = (np.max(np.abs(other.residual(values) - full_F)) > 0
+                               if item in form.terms else
+                               np.max(np.abs(other.jacobian(values).toarray() - full_J)) > 0)
+                    assert changed, (form.name, item)
+                    seen.add((form.name, item))
+    declared = {(f.name, i) for f in (forms.FILM, forms.SINK, forms.WEB, forms.COUPLING)
+                for i in f.terms + f.blocks}
+    assert declared <= seen, declared - seen
 
 
 def test_pattern_is_shared():
@@ -154,10 +183,10 @@ def test_grooved_film(grooved, newton):
     p, u = grooved
     prm = FoilParameters(**{**PRM.__dict__, "land": 0.7})
     assert np.any(p.groove_q > 0) and np.any(p.groove_q == 0)
-    fast_F, ref_F = p.residual(u, prm), p.residual(u, prm, reference=True)
+    fast_F, ref_F = p.residual(u, prm), p.system.reference_residual(u, prm)
     assert _relative(fast_F, ref_F) < TOL
     A = p.jacobian(u, prm, newton).toarray()
-    B = p.jacobian(u, prm, newton, reference=True).toarray()
+    B = p.system.reference_jacobian(u, prm, newton).toarray()
     assert _relative(A, B) < TOL
     # the grooves and the land fraction are in both
     smooth = FoilBearing2D(p.X, p.Z, web_edges=p.web_edges)
@@ -190,16 +219,16 @@ def test_film_fields_are_scikit_fems(film):
 
 
 @pytest.mark.parametrize("stacked", [False, True])
-def test_line_contraction_is_bilinear(stacked):
-    """The 1-D Jacobian's contraction with its test side laid out once per mesh is
-    BasisData.bilinear's einsum (the same batched product: equal to rounding, in practice
-    bit for bit)."""
+def test_contraction_is_bilinear(stacked):
+    """The contraction with the test side laid out once per mesh is BasisData.bilinear's
+    einsum (the same batched product: equal to rounding, in practice bit for bit)."""
     p = FoilBearing1D(graded_nodes(PRM.beta, 6.0, level=0), order=2)
-    a = p.assembler
+    b = p.system.b
+    q, gq, v = b.phi_c[0], b.grad_c[0][:, 0], b.phi_c[1]
     rng = np.random.default_rng(5)
-    test = np.stack([a.gq, a.q]) if stacked else a.v
-    trial = rng.standard_normal((2,) + a.q.shape if stacked else a.v.shape)
-    got = fast._contract(fast._test_layout(test), trial)
+    test = np.stack([gq, q]) if stacked else v
+    trial = rng.standard_normal((2,) + q.shape if stacked else v.shape)
+    got = fast.contract_layout(fast.test_layout(test), trial)
     np.testing.assert_allclose(got, fast.BasisData.bilinear(test, trial), rtol=1e-14,
                                atol=1e-14 * np.max(np.abs(got)))
 

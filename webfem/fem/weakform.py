@@ -1,0 +1,275 @@
+"""Weak forms as data, and the two assemblies generated from them.
+
+A weak form is declared once (:class:`WeakForm`): its residual terms, each a coefficient times
+an operator on the test function, and its Jacobian blocks, each a coefficient times an
+operator on the test function times an operator on the trial function,
+
+    F_i  = sum_terms  int c(x) op(phi_i) dx,
+    J_ij = sum_blocks int c(x) op(phi_i) op'(psi_j) dx,
+
+over fields named in the declaration ("p" the film pressure, "w" the web deflection) and the
+operators ``val``, ``dx`` (d/dX), ``dz`` (d/dZ, 2-D only) and ``dxx`` (d2/dX2). The
+coefficients are arrays at the quadrature points that one function computes from the state
+(:mod:`webfem.fem.forms`: the single physics-aware place), or a name of a scalar, or a number.
+A coefficient written ``"-name"`` enters with its sign flipped.
+
+From a declaration this module generates
+
+* :func:`skfem_forms`: scikit-fem's ``LinearForm`` and ``BilinearForm`` (the readable
+  reference; one call of the kernel per pair of local basis functions), and
+* :class:`FastForm`: the same integrals contracted over all elements at once from the bases'
+  arrays read once per mesh (:class:`webfem.fem.fast.BasisData`), into a sparsity pattern
+  built once per mesh (:class:`webfem.fem.fast.Pattern`), so a Jacobian is one refill of a
+  CSR matrix's data.
+
+The fast form also takes a field on another mesh: the web's Hermite functions at the 2-D
+film's quadrature points (:meth:`Space.from_arrays` of the transfer matrices), so the film-web
+blocks of the 2-D model come from the same declaration. tests/test_forms.py assembles every
+declaration both ways and compares them to 1e-12.
+
+Examples
+--------
+>>> import numpy as np
+>>> from skfem import Basis, ElementLineP1, MeshLine
+>>> from webfem.fem.fast import BasisData
+>>> mass = WeakForm("mass", ("p",), terms=(Term("p", "val", "f"),),
+...                 blocks=(Block("p", "val", "p", "val", 1.0),))
+>>> b = BasisData(Basis(MeshLine(np.linspace(0.0, 1.0, 5)), ElementLineP1()))
+>>> fast = FastForm([Part((mass,), {"p": Space.from_basis(b)}, b.dx)], b.N)
+>>> float(fast.jacobian([{}]).sum()), float(fast.residual([{"f": np.ones_like(b.dx)}]).sum())
+(1.0, 1.0)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import BilinearForm, LinearForm
+
+from .fast import Pattern, contract_layout, test_layout
+
+__all__ = ["Term", "Block", "WeakForm", "Space", "Part", "FastForm", "skfem_forms", "coefficient",
+           "OPERATORS"]
+
+#: The operators a term may apply to a test or trial function.
+OPERATORS = ("val", "dx", "dz", "dxx")
+
+
+@dataclass(frozen=True)
+class Term:
+    """A residual term: int ``coef`` ``op``(test of ``field``)."""
+
+    field: str
+    op: str
+    coef: str | float
+
+
+@dataclass(frozen=True)
+class Block:
+    """A Jacobian term: int ``coef`` ``op``(test of ``field``) ``trial_op``(trial of
+    ``trial``)."""
+
+    field: str
+    op: str
+    trial: str
+    trial_op: str
+    coef: str | float
+
+
+@dataclass(frozen=True)
+class WeakForm:
+    """A named declaration: its ``fields``, residual ``terms`` and Jacobian ``blocks``
+    (``blocks`` may be empty for a form assembled only as a residual)."""
+
+    name: str
+    fields: tuple[str, ...]
+    terms: tuple[Term, ...] = ()
+    blocks: tuple[Block, ...] = ()
+
+    def __post_init__(self):
+        for t in self.terms + self.blocks:
+            ops = (t.op,) + ((t.trial_op,) if isinstance(t, Block) else ())
+            fields = (t.field,) + ((t.trial,) if isinstance(t, Block) else ())
+            if any(o not in OPERATORS for o in ops) or any(f not in self.fields
+                                                         for f in fields):
+                raise ValueError(f"{self.name}: {t} uses an unknown operator or field")
+
+
+def coefficient(values: dict, coef):
+    """The value of a term's coefficient: a number, ``values[name]`` or its negative."""
+    if not isinstance(coef, str):
+        return coef
+    if coef.startswith("-"):
+        return -values[coef[1:]]
+    return values[coef]
+
+
+# -- the scikit-fem reference ----------------------------------------------------------------
+def _operator(f, op: str):
+    if op == "val":
+        return f
+    if op == "dx":
+        return f.grad[0]
+    if op == "dz":
+        return f.grad[1]
+    return f.hess[0, 0]
+
+
+def _present(f, op: str) -> bool:
+    return op != "dz" or f.grad.shape[0] > 1
+
+
+def skfem_forms(forms, fields: tuple[str, ...]) -> tuple[LinearForm, BilinearForm]:
+    """scikit-fem's residual and Jacobian forms of the declarations ``forms`` on a basis whose
+    components are ``fields`` (in order; a composite element has one per field). Terms of a
+    field the basis does not hold are left out, and so are ``dz`` terms in 1-D. The
+    coefficients are the keyword arguments of ``assemble``."""
+    terms = [t for form in forms for t in form.terms if t.field in fields]
+    blocks = [b for form in forms for b in form.blocks
+              if b.field in fields and b.trial in fields]
+    n = len(fields)
+
+    def residual(*args):
+        tests, w = dict(zip(fields, args[:n])), args[n]
+        return sum(coefficient(w, t.coef) * _operator(tests[t.field], t.op) for t in terms
+                   if _present(tests[t.field], t.op))
+
+    def jacobian(*args):
+        trials, tests = dict(zip(fields, args[:n])), dict(zip(fields, args[n:2 * n]))
+        w = args[2 * n]
+        return sum(coefficient(w, b.coef) * _operator(tests[b.field], b.op)
+                   * _operator(trials[b.trial], b.trial_op) for b in blocks
+                   if _present(tests[b.field], b.op) and _present(trials[b.trial], b.trial_op))
+
+    return LinearForm(residual), BilinearForm(jacobian)
+
+
+# -- the fast assembly ---------------------------------------------------------------------------
+@dataclass
+class Space:
+    """A field's local functions at one set of quadrature points: their global DOFs
+    (local function, element) and, per operator, their values (local function, element,
+    point)."""
+
+    dofs: np.ndarray
+    ops: dict = field(default_factory=dict)
+
+    @classmethod
+    def from_basis(cls, b, component: int = 0, offset: int = 0) -> "Space":
+        """Component ``component`` of a :class:`~webfem.fem.fast.BasisData` (its DOFs
+        shifted by ``offset``, for a field that follows another in the unknowns)."""
+        grad = b.grad_c[component]
+        ops = {"val": b.phi_c[component], "dx": grad[:, 0]}
+        if grad.shape[1] > 1:
+            ops["dz"] = grad[:, 1]
+        if b.hess_c[component] is not None:
+            ops["dxx"] = b.hess_c[component]
+        return cls(b.dofs_of(component) + offset, ops)
+
+    @classmethod
+    def from_arrays(cls, values: np.ndarray, dofs: np.ndarray, offset: int = 0) -> "Space":
+        """A field given by its values at another basis's quadrature points (the web's
+        Hermite functions at the film's points: ``M_loc``, ``M_dofs`` of
+        :func:`webfem.fem.transfer.quadrature_matrices`)."""
+        return cls(np.asarray(dofs) + offset, {"val": np.asarray(values)})
+
+
+@dataclass
+class Part:
+    """Declarations assembled on one set of quadrature points: the ``forms``, the fields'
+    :class:`Space` objects there and the quadrature weights ``dx`` (element, point)."""
+
+    forms: tuple
+    spaces: dict
+    dx: np.ndarray
+
+
+class FastForm:
+    """The declarations of every :class:`Part` assembled over all elements at once into one
+    system of ``n`` unknowns (one sparsity pattern: the film + web system of a mesh).
+
+    The Jacobian's blocks are grouped per part by (test field, trial field) and, within a
+    group, by the test operator: the trial sides of one test operator are summed and every
+    test operator of a group contracted in one batched matrix product
+    (:func:`webfem.fem.fast.contract_layout`). Blocks with a number for a coefficient, or a
+    scalar (e.g. the bending group ``Dn``), are contracted with a unit coefficient once,
+    when first needed, and scaled.
+    """
+
+    def __init__(self, parts, n: int):
+        self.parts, self.n = list(parts), int(n)
+        self._terms, self._groups, self._layouts, self._unit = [], [], [], {}
+        pairs = []
+        for part in self.parts:
+            sp_ = part.spaces
+            self._terms.append([t for f in part.forms for t in f.terms
+                                if t.field in sp_ and t.op in sp_[t.field].ops])
+            groups = {}
+            for f in part.forms:
+                for b in f.blocks:
+                    if (b.field in sp_ and b.trial in sp_ and b.op in sp_[b.field].ops
+                            and b.trial_op in sp_[b.trial].ops):
+                        groups.setdefault((b.field, b.trial), []).append(b)
+            layouts = {}
+            for (fi, fj), group in groups.items():
+                ops = list(dict.fromkeys(b.op for b in group))
+                layouts[fi, fj] = (ops, test_layout(np.stack([sp_[fi].ops[o] for o in ops])))
+                r, c = sp_[fi].dofs, sp_[fj].dofs
+                pairs.append((np.broadcast_to(r[:, None, :], (r.shape[0],) + c.shape),
+                              np.broadcast_to(c[None, :, :], (r.shape[0],) + c.shape)))
+            self._groups.append(groups)
+            self._layouts.append(layouts)
+        self.pattern = Pattern(pairs, (self.n, self.n)) if pairs else None
+
+    def residual(self, values) -> np.ndarray:
+        """F from each part's coefficient arrays (``values``: one dict per part)."""
+        F = np.zeros(self.n)
+        for part, terms, vals in zip(self.parts, self._terms, values):
+            local = {}
+            for t in terms:
+                c = coefficient(vals, t.coef) * part.dx
+                piece = np.einsum("ieq,eq->ie", part.spaces[t.field].ops[t.op], c)
+                local[t.field] = piece if t.field not in local else local[t.field] + piece
+            for name, piece in local.items():
+                F += np.bincount(part.spaces[name].dofs.ravel(), weights=piece.ravel(),
+                                 minlength=self.n)
+        return F
+
+    def _unit_block(self, k: int, b: Block) -> np.ndarray:
+        if (k, b) not in self._unit:
+            part = self.parts[k]
+            self._unit[k, b] = contract_layout(test_layout(part.spaces[b.field].ops[b.op]),
+                                               part.spaces[b.trial].ops[b.trial_op] * part.dx)
+        return self._unit[k, b]
+
+    def blocks(self, values) -> list[np.ndarray]:
+        """Each group's element matrices (test function, trial function, element), in the
+        pattern's order."""
+        out = []
+        for k, (part, groups, vals) in enumerate(zip(self.parts, self._groups, values)):
+            for key, group in groups.items():
+                ops, layout = self._layouts[k][key]
+                trial = dict.fromkeys(ops)
+                total = None
+                for b in group:
+                    c = coefficient(vals, b.coef)
+                    if np.ndim(c) == 0:
+                        piece = float(c) * self._unit_block(k, b)
+                        total = piece if total is None else total + piece
+                        continue
+                    term = part.spaces[b.trial].ops[b.trial_op] * (c * part.dx)
+                    trial[b.op] = term if trial[b.op] is None else trial[b.op] + term
+                used = [o for o in ops if trial[o] is not None]
+                if used:
+                    lay = layout if len(used) == len(ops) else test_layout(
+                        np.stack([part.spaces[key[0]].ops[o] for o in used]))
+                    piece = contract_layout(lay, np.stack([trial[o] for o in used]))
+                    total = piece if total is None else total + piece
+                out.append(total)
+        return out
+
+    def jacobian(self, values) -> sp.csr_matrix:
+        """The Jacobian from each part's coefficient arrays."""
+        return self.pattern.matrix(self.blocks(values))
