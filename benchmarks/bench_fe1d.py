@@ -21,7 +21,7 @@ CASES = (("40 m/s, no contact", Case().updated({"roller.speed": 40.0}), 0.010),
 
 
 def cold(case):
-    fe1d._CACHE.clear()
+    fe1d.LINE.problems.clear()
     return fe1d.solve(case)
 
 

@@ -28,7 +28,7 @@ from webfem.models import fe1d, fe2d
 
 
 def cold(case, **opts):
-    fe1d._CACHE.clear()
+    fe1d.LINE.problems.clear()
     return fe2d.solve(case, **opts)
 
 

@@ -38,7 +38,7 @@ def eshel_elrod(beta=30.0, Dn=0.0, d=0.0):
 def solve_scaled(prm, entry=DEFAULTS.entry, level=DEFAULTS.level, order=DEFAULTS.order):
     pb = FoilBearing1D(graded_nodes(prm.beta, entry, level=level), order=order)
     u, info = pb.solve_newton(pb.initial_guess(prm), prm)
-    assert info["converged"], info["reason"]
+    assert info.converged, info.reason
     H0 = float(pb.gap(u, prm, np.array([0.0]))[0])
     Hmin, _ = minimum(pb, u, prm)
     return pb, u, H0, Hmin
@@ -148,7 +148,7 @@ def test_continuation_jumps_from_eshel_elrod_to_the_full_problem():
     """After a failed direct start the continuation solves s = 0, then s = 1 at once."""
     pb, prm = _continued_problem()
     u, info = pb.solve_newton(pb.initial_guess(prm), prm)
-    assert info["converged"] and info["steps"] == [0.0, 1.0]
+    assert info.converged and info.steps == [0.0, 1.0]
 
 
 def test_continuation_steps_when_the_jump_fails(monkeypatch):
@@ -156,7 +156,7 @@ def test_continuation_steps_when_the_jump_fails(monkeypatch):
     same solution."""
     pb, prm = _continued_problem()
     u_jump, _ = pb.solve_newton(pb.initial_guess(prm), prm)
-    newton, calls = pb._newton, []
+    newton, calls = pb.newton, []
 
     def failing_jump(u0, p, tol, max_iter, rows=None):
         out = newton(u0, p, tol, max_iter, rows)
@@ -167,9 +167,9 @@ def test_continuation_steps_when_the_jump_fails(monkeypatch):
             out.converged = False
         return out
 
-    monkeypatch.setattr(pb, "_newton", failing_jump)
+    monkeypatch.setattr(pb, "newton", failing_jump)
     u, info = pb.solve_newton(pb.initial_guess(prm), prm)
-    assert info["converged"] and info["steps"] == [0.0, 0.25, 0.75, 1.0]
+    assert info.converged and info.steps == [0.0, 0.25, 0.75, 1.0]
     np.testing.assert_allclose(u, u_jump, rtol=0, atol=1e-8 * np.max(np.abs(u_jump)))
 
 
@@ -241,15 +241,14 @@ def test_cli_model_options(capsys):
 def test_problem_cache_keeps_the_recent_meshes(monkeypatch):
     """Problems (starting and refined meshes) are built once per node set; beyond the cache
     size the least recently used one goes, and a repeated solve reuses all of its meshes."""
-    monkeypatch.setattr(fe1d, "_CACHE", {})
-    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 3)
+    cache = fe1d.ProblemCache(size=3)
     meshes = [graded_nodes(30.0, 20.0, level=0) * f for f in (1.0, 1.1, 1.2, 1.3)]
-    first = [fe1d._cached(X, 2) for X in meshes[:3]]
-    assert fe1d._cached(meshes[0].copy(), 2) is first[0]        # hit: now the most recent
-    fe1d._cached(meshes[3], 2)                                  # evicts meshes[1]
-    assert fe1d._cached(meshes[0], 2) is first[0] and fe1d._cached(meshes[2], 2) is first[2]
-    assert len(fe1d._CACHE) == 3 and fe1d._cached(meshes[1], 2) is not first[1]
-    monkeypatch.setattr(fe1d, "_CACHE_SIZE", 12)
+    first = [cache(X, 2) for X in meshes[:3]]
+    assert cache(meshes[0].copy(), 2) is first[0]        # hit: now the most recent
+    cache(meshes[3], 2)                                  # evicts meshes[1]
+    assert cache(meshes[0], 2) is first[0] and cache(meshes[2], 2) is first[2]
+    assert len(cache._problems) == 3 and cache(meshes[1], 2) is not first[1]
+    monkeypatch.setattr(fe1d.LINE, "problems", fe1d.ProblemCache())
     case = Case().updated({"roller.speed": 20.0})
     a = fe1d.solve(case)
     built = []

@@ -16,6 +16,7 @@ from webfem.models import fe1d, fe2d
 from webfem.models.refine import minimum
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
+from webfem.models.options import FE2DOptions
 
 from orders import GAP_2D
 
@@ -25,14 +26,14 @@ EE = FoilParameters(beta=30.0, K=0.0, d=0.0, Dn=0.0, c=0.0, S=1.0, contact=0.0, 
 def line_solution(X, prm=EE):
     p1 = FoilBearing1D(X)
     u1, info = p1.solve_newton(p1.initial_guess(prm), prm)
-    assert info["converged"]
+    assert info.converged
     return p1, u1
 
 
 def film_solution(X, lam, p1, u1, prm=EE, level=0, order=2, half=True):
     pb = FoilBearing2D(X, width_nodes(lam, level=level, half=half), order=order)
-    u, info = pb.solve_newton(pb.start_from_line(p1, u1, prm), prm)
-    assert info["converged"], info["reason"]
+    u, info = pb.solve_newton(pb.start_from_line(p1, u1, prm), prm, FE2DOptions())
+    assert info.converged, info.reason
     return pb, u
 
 

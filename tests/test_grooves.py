@@ -80,14 +80,14 @@ def line():
     X = graded_nodes(30.0, 20.0)
     p1 = FoilBearing1D(X)
     u1, info = p1.solve_newton(p1.initial_guess(EE), EE)
-    assert info["converged"]
+    assert info.converged
     return X, p1, u1
 
 
 def _film(X, Z, p1, u1, **kw):
     pb = FoilBearing2D(X, Z, **kw)
-    u, info = pb.solve_newton(pb.start_from_line(p1, u1, EE), EE)
-    assert info["converged"], info["reason"]
+    u, info = pb.solve_newton(pb.start_from_line(p1, u1, EE), EE, FE2DOptions())
+    assert info.converged, info.reason
     return pb, u
 
 

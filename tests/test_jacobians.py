@@ -17,6 +17,7 @@ from webfem.fem.scaling import FoilParameters
 from webfem.fem.transfer import width_nodes
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
+from webfem.models.options import FE2DOptions
 
 from orders import GAP_1D, GAP_2D
 
@@ -49,7 +50,7 @@ def line_state(order, seed=0):
     # H^3 ~ 5e8 at the ends, whose round-off swamps the small parts below)
     pb = FoilBearing1D(graded_nodes(PRM.beta, 10.0, level=0), order=order)
     u, info = pb.solve_newton(pb.initial_guess(PRM), PRM)
-    assert info["converged"], info["reason"]
+    assert info.converged, info.reason
     rng = np.random.default_rng(seed)
     v = u * (1.0 + 1e-2 * rng.standard_normal(u.size))
     v[pb.fixed] = 0.0
@@ -127,7 +128,7 @@ def test_convergence_order_with_every_effect(order):
     for level in range(4):
         pb = FoilBearing1D(graded_nodes(prm.beta, 40.0, level=level), order=order)
         u, info = pb.solve_newton(pb.initial_guess(prm), prm)
-        assert info["converged"], info["reason"]
+        assert info.converged, info.reason
         H.append(float(pb.gap(u, prm, np.array([0.0]))[0]))
     d = np.abs(np.diff(H))
     orders = np.log2(d[:-1] / d[1:])
@@ -146,10 +147,10 @@ def test_convergence_order_2d_with_every_effect():
         X = graded_nodes(prm.beta, 20.0, level=level)
         line = FoilBearing1D(X)
         u1, info = line.solve_newton(line.initial_guess(prm), prm)
-        assert info["converged"], info["reason"]
+        assert info.converged, info.reason
         pb = FoilBearing2D(X, width_nodes(case.lam, level=level, half=True), order=1)
-        u, info = pb.solve_newton(pb.start_from_line(line, u1, prm), prm)
-        assert info["converged"], info["reason"]
+        u, info = pb.solve_newton(pb.start_from_line(line, u1, prm), prm, FE2DOptions())
+        assert info.converged, info.reason
         H.append(float(pb.gap(u, prm, np.array([0.0]))[0]))
     d = np.abs(np.diff(H))
     assert np.log2(d[0] / d[1]) == GAP_2D[1].approx(), H

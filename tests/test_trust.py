@@ -1,6 +1,7 @@
 """Admissible or nothing (issue 11): no inadmissible field is returned as converged, the
 answer does not depend on the path that led to it, and user meshes are checked."""
 
+import dataclasses
 import math
 import warnings
 
@@ -10,6 +11,7 @@ import pytest
 import webfem
 from webfem import Case
 from webfem.case import load_case
+from webfem.fem.outcome import SolveInfo
 from webfem.api import solve_along
 from webfem.errors import ConvergenceError, InputError, ValidityWarning
 
@@ -210,7 +212,7 @@ def test_finer_mesh_remedy_stops_before_a_huge_mesh(monkeypatch, n_dofs, levels)
         tried.append(options.level)
         p = Problem()
         p.n_dofs = n_dofs
-        return p, None, {"converged": True, "iterations": 1, "history": [], "reason": ""}
+        return p, None, SolveInfo(converged=True, iterations=1), False
 
     class Disc:
         name = "fe2d"
@@ -220,7 +222,7 @@ def test_finer_mesh_remedy_stops_before_a_huge_mesh(monkeypatch, n_dofs, levels)
 
     monkeypatch.setattr(driver, "_solve_and_refine", solve_and_refine)
     monkeypatch.setattr(driver, "admissibility", lambda *a: "the gap reaches -1e-8 m")
-    info = {"converged": True, "iterations": 0, "history": []}
+    info = SolveInfo(converged=True)
     out = driver._on_finer_meshes(Disc(), None, None, FE2DOptions(), None, Problem(), None,
                                   info, "the gap reaches -1e-8 m")
     assert tried == levels
@@ -260,7 +262,7 @@ def test_a_driver_failure_of_linear_algebra_is_a_message(monkeypatch):
         raise np.linalg.LinAlgError("Singular matrix")
 
     monkeypatch.setattr(fe1d, "FoilBearing1D", broken)
-    monkeypatch.setattr(fe1d, "_CACHE", {})
+    monkeypatch.setattr(fe1d.LINE, "problems", fe1d.ProblemCache())
     with pytest.raises(webfem.ConvergenceError, match="LinAlgError: Singular matrix"):
         webfem.solve(BASE.updated({"roller.speed": 33.0}), model="fe1d")
 
@@ -286,8 +288,8 @@ def test_a_failed_solve_is_tried_on_a_finer_mesh(monkeypatch):
     def flaky(self, u0, prm, options=None):
         u, info = real(self, u0, prm, options)
         if options is not None and options.level == 0:
-            info = dict(info, converged=False, reason="groove depth continuation failed at "
-                                                      "0.938 x the groove depth")
+            info = dataclasses.replace(info, converged=False, reason="groove depth "
+                                       "continuation failed at 0.938 x the groove depth")
         return u, info
 
     monkeypatch.setattr(fe2d.FoilBearing2D, "solve_newton", flaky)

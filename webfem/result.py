@@ -48,7 +48,7 @@ import numpy as np
 
 from .case import Case
 
-__all__ = ["Result", "Summary", "Fields", "Film", "Diagnostics", "SUMMARY_KEYS"]
+__all__ = ["Result", "Summary", "Fields", "Film", "Diagnostics", "State", "SUMMARY_KEYS"]
 
 #: The contract: keys every model's summary carries (others may be added, none removed).
 SUMMARY_KEYS = ("model", "h_center", "h_inlet", "h_outlet", "h_min", "mu", "delta_T", "regime",
@@ -295,7 +295,7 @@ class Diagnostics(_ReadOnlyMapping):
     ``wrap_w`` weights summing to 1, ``wrap_p`` [Pa] absolute pressure and ``wrap_dpdx``
     [Pa/m] its gradient, to re-evaluate friction), Picard's ``omegas`` and
     ``block_iterations``. ``solver`` holds the discrete problem and state vector (for
-    continuation; dropped by :meth:`Result.slim`)."""
+    inspection in the solving process; dropped by :meth:`Result.slim`)."""
 
     method: str = ""
     history: tuple = ()
@@ -316,6 +316,25 @@ class Diagnostics(_ReadOnlyMapping):
 
 
 @dataclass(frozen=True, repr=False)
+class State:
+    """What a later solve restarts from, small and picklable: the ``case`` solved, the
+    ``model``, its mesh (scaled nodes ``X``, and ``Z`` across the width for the 2-D film)
+    and DOF vector ``u``, and for the 2-D film the 1-D state it started from (``line``). The
+    same state restarts a solve in the process that made it and in a worker."""
+
+    case: Case
+    model: str
+    X: np.ndarray
+    u: np.ndarray
+    Z: np.ndarray | None = None
+    line: "State | None" = None
+
+    def __repr__(self) -> str:
+        z = f" x {len(self.Z)} Z" if self.Z is not None else ""
+        return f"State({self.model}: {len(self.X)} X{z} nodes, {self.u.size} unknowns)"
+
+
+@dataclass(frozen=True, repr=False)
 class Result:
     """What a model returns: the case, its :class:`Summary`, :class:`Fields` along the web,
     the 2-D :class:`Film` (2-D models) and :class:`Diagnostics`.
@@ -329,6 +348,8 @@ class Result:
     fields: Fields
     diagnostics: Diagnostics = field(default_factory=Diagnostics)
     film: Film | None = None
+    #: What a continued solve starts from (FE models; None for the closed form).
+    restart: State | None = None
 
     def __post_init__(self):
         if not isinstance(self.summary, Summary):
@@ -339,23 +360,22 @@ class Result:
             object.__setattr__(self, "film", Film(**dict(self.film)))
 
     def slim(self) -> "Result":
-        """A copy without the solver's internal objects (mesh bases, state vector): small
-        and picklable, for worker processes and storage. What a continued solve starts from
-        stays: the fields, and a 2-D result's 1-D start (``line_result``, slim itself)."""
-        line = self.state("line_result")
-        keep = {"line_result": line.slim()} if line is not None else None
+        """A copy without the solver's internal objects (mesh bases, discrete problem):
+        small and picklable, for worker processes and storage. What a continued solve starts
+        from stays (:attr:`restart`)."""
         return dataclasses.replace(self, diagnostics=dataclasses.replace(self.diagnostics,
-                                                                         solver=keep))
+                                                                         solver=None))
 
     def __reduce__(self):
         # pickled as its slim copy: scikit-fem's bases hold lambdas, and a result sent to or
         # from a worker process needs only what a continued solve starts from
         s = self.slim()
-        return (Result, (s.case, s.summary, s.fields, s.diagnostics, s.film))
+        return (Result, (s.case, s.summary, s.fields, s.diagnostics, s.film, s.restart))
 
     def state(self, name: str):
-        """The solver's internal object ``name`` ("problem", "state", "line_result"), for
-        continuation; after :meth:`slim` (and pickling) only "line_result" is kept."""
+        """The solver's internal object ``name`` ("problem", "state": the discrete problem
+        and the DOF vector of the answer), for inspection in the process that solved; None
+        after :meth:`slim` (continuation reads :attr:`restart`)."""
         return (self.diagnostics.solver or {}).get(name)
 
     def __getitem__(self, key: str) -> Any:

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GroovePattern", "groove_nodes"]
+__all__ = ["GroovePattern", "groove_nodes", "choose_domain", "CELL_PITCHES"]
 
 
 @dataclass(frozen=True)
@@ -73,3 +73,22 @@ def groove_nodes(pattern: GroovePattern, z0: float, z1: float, fine: float = 0.2
         n = max(cells, int(math.ceil((c - a) / fine - 1e-9))) * 2 ** level
         parts.append(np.linspace(a, c, n + 1)[:-1])
     return np.concatenate(parts + [[z1]])
+
+
+#: A wide web is solved on the periodic groove cell from this many groove pitches across it
+#: (``grooves = "auto"``).
+CELL_PITCHES = 10.0
+
+
+def choose_domain(pitches: float, choice: str = "auto") -> str:
+    """The domain across the width of a grooved roller: "cell" (the periodic cell land centre
+    to groove centre) or "full" (the web's width with its edge lands). ``pitches``: groove
+    pitches the web spans; ``choice``: "auto" (the cell from :data:`CELL_PITCHES` pitches),
+    "cell" or "full".
+
+    >>> choose_domain(27.6), choose_domain(6.3), choose_domain(6.3, "cell")
+    ('cell', 'full', 'cell')
+    """
+    if choice != "auto":
+        return choice
+    return "cell" if pitches >= CELL_PITCHES else "full"

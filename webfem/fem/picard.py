@@ -21,6 +21,7 @@ import numpy as np
 
 from ..progress import report
 from .newton import norm2
+from .outcome import SolveInfo
 
 __all__ = ["PicardResult", "picard", "frozen_coefficient_picard"]
 
@@ -131,7 +132,7 @@ def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True
 
     ``problem`` provides ``residual(u, prm)``, ``jacobian(u, prm, newton)``, ``free`` and
     ``consistent_pressure(u, prm)``. Stops when the coupled residual ||F||_2 <= ``tol``, the
-    test Newton uses, so the two compare at equal tolerance. Returns ``(u, info)``.
+    test Newton uses, so the two compare at equal tolerance. Returns ``(u, SolveInfo)``.
     """
     from .newton import solve_linear
 
@@ -163,5 +164,5 @@ def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True
         out.reason = f"Anderson: {first.reason}; then relaxation: {out.reason}"
     u[free] = out.x
     res = norm2(problem.residual(u, prm)[free])
-    return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
-                   history=out.history, reason=out.reason, omegas=out.omegas)
+    return u, SolveInfo(converged=out.converged, iterations=out.iterations, residual=res,
+                        history=list(out.history), reason=out.reason, omegas=out.omegas)

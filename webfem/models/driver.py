@@ -1,15 +1,16 @@
 """The one FE driver shared by the 1-D and 2-D models.
 
 :func:`solve_fe` takes a case, an options object and a :class:`Discretisation` (what differs
-between the models: how the discrete problem is built and started, how a state moves to a
-finer mesh, what the mesh is called) and does everything else once: the method dispatch
-(Newton, Picard, staggered Picard), the adaptive refinement where the film is thin, the
-admissibility check of the answer (and what a careful analyst tries when it fails), the
-summary, the fields and the failure handling.
+between the models: how the discrete problem is built and started, how a state moves to
+another mesh, what the mesh is called, what the summary adds) and does everything else once:
+the method dispatch (Newton, Picard, staggered Picard), the adaptive refinement where the film
+is thin, the admissibility check of the answer and what a careful analyst tries when there is
+none, the error estimate and the refinement it asks for, and the failure handling. The typed
+result is built by :mod:`webfem.models.outcome`.
 
 A discrete problem (:class:`FEProblem`) offers ``X`` (its scaled x nodes), ``n_dofs``,
 ``gap(u, prm, X)``, ``pressure(u, X)`` and ``solve_newton/solve_picard(u0, prm, options)``
-returning ``(u, info)``; ``info`` has converged, iterations, residual, history, reason.
+returning ``(u, SolveInfo)``.
 """
 
 from __future__ import annotations
@@ -22,22 +23,18 @@ import numpy as np
 
 from ..case import Case
 from ..errors import ConvergenceError, InputError
-from ..fem import forms
+from ..fem.outcome import SolveInfo
 from ..fem.scaling import FoilParameters
-from ..physics.closed_form import eq21_valid
-from ..physics.contact import REGIMES
-from ..physics.effects import included
-from ..physics.friction import friction_for
-from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
+from ..physics.validity import thin_film_check, wrap_length_check
 from ..progress import stage
-from ..result import Diagnostics, Fields, Result, Summary
-from .admissible import _no_admissible_solution, admissibility
-from .mesh_error import MeshError, estimate_mesh_error, summary_keys
-from .readout import pressure_and_gradient, read_out
+from ..result import Result, State
+from .admissible import admissibility, no_admissible_solution
+from .mesh_error import MeshError, estimate_mesh_error
+from .outcome import Facts, build_result
 from .refine import adapted_nodes
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
-           "admissibility"]
+           "admissibility", "REMEDY_MAX_DOFS"]
 
 #: The methods of a problem that each ``method`` option calls.
 METHODS = {"newton": "solve_newton", "picard": "solve_picard",
@@ -52,34 +49,60 @@ class FEProblem(Protocol):
 
     def gap(self, u, prm, X) -> np.ndarray: ...
     def pressure(self, u, X) -> np.ndarray: ...
-    def solve_newton(self, u0, prm, options) -> tuple[np.ndarray, dict]: ...
-    def solve_picard(self, u0, prm, options) -> tuple[np.ndarray, dict]: ...
+    def solve_newton(self, u0, prm, options) -> tuple[np.ndarray, SolveInfo]: ...
+    def solve_picard(self, u0, prm, options) -> tuple[np.ndarray, SolveInfo]: ...
 
 
 @dataclass
 class Start:
-    """A discrete problem and its start vector; ``iterations`` already spent getting there
-    (the 2-D model's 1-D solve) and ``solver`` objects to keep in the result."""
+    """A discrete problem and its start vector; ``info`` of the work already spent getting
+    there (the 2-D model's 1-D solve) and ``line``: the 1-D state a 2-D start came from,
+    which its result keeps to restart from."""
 
     problem: Any
     u0: np.ndarray
-    iterations: int = 0
-    solver: dict = field(default_factory=dict)
+    info: SolveInfo | None = None
+    line: State | None = None
+    #: objects of the solving process the result keeps for inspection (dropped on pickling)
+    kept: dict = field(default_factory=dict)
 
 
-class Discretisation(Protocol):
-    """What differs between the 1-D and 2-D models."""
+class Discretisation:
+    """What differs between the 1-D and 2-D models: every method the driver calls. The
+    defaults are those of a model without them (no safe start, nothing to add)."""
 
-    name: str
+    name = ""
 
-    def start(self, case: Case, prm: FoilParameters, options, initial) -> Start: ...
-    def refined(self, problem, u, prm, X: np.ndarray, options) -> tuple[Any, np.ndarray]: ...
-    def mesh_text(self, problem, options) -> str: ...
-    def summary_extra(self, case: Case, problem, options) -> dict: ...
-    def film(self, case: Case, problem, u, prm): ...
+    def start(self, case: Case, prm: FoilParameters, options,
+              restart: State | None) -> Start:
+        raise NotImplementedError
+
+    def safe_start(self, case: Case, prm: FoilParameters, options) -> Start | None:
+        """A start on the starting mesh that reaches the physical branch when a direct one
+        does not (None: the model has none)."""
+        return None
+
+    def remeshed(self, problem, u, prm, X, Z, options) -> tuple[Any, np.ndarray]:
+        """The problem on other nodes (X, and Z for the 2-D film) and ``u`` carried over."""
+        raise NotImplementedError
+
+    def mesh_text(self, problem, options) -> str:
+        raise NotImplementedError
+
+    def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
+        """What the model adds to the summary (cells, grooves, warnings)."""
+        return Facts(n_cells=len(problem.X) - 1)
+
+    def film(self, case: Case, problem, u, prm):
+        """The 2-D film's fields (None for a 1-D model)."""
+        return None
+
+    def state(self, case: Case, problem, u, start: Start) -> State:
+        """What a later solve restarts from."""
+        return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())
 
 
-def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, dict]:
+def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, SolveInfo]:
     method = METHODS[options.method]
     if not hasattr(problem, method):
         raise InputError(f"method = {options.method!r} is not available for this model")
@@ -89,53 +112,54 @@ def _iterate(problem, u0, prm, options) -> tuple[np.ndarray, dict]:
 def _solve_and_refine(disc: Discretisation, start: Start, prm, options, case=None):
     """Solve on the starting mesh, then refine where the film is thin and solve again, up to
     ``options.adapt`` rounds. With ``case`` (a cold start of a model with a safe start), a
-    state inadmissible on the starting mesh is returned unrefined (``info["unrefined"]``):
+    state inadmissible on the starting mesh is returned unrefined (the fourth value True):
     the driver tries the safe start next, and refines this state only if that fails
     (refining a spurious branch costs rounds for nothing)."""
     problem = start.problem
     with stage(f"{disc.name} {options.method}, {problem.n_dofs:,} unknowns"):
         u, info = _iterate(problem, start.u0, prm, options)
-    info["iterations"] += start.iterations
-    if case is not None and info["converged"] and admissibility(case, problem, u, prm):
-        info.update(adapt_rounds=0, unrefined=True)
-        return problem, u, info
-    return _refine(disc, problem, u, info, prm, options)
+    if start.info is not None:
+        info = info.after(start.info)
+    if case is not None and info.converged and admissibility(case, problem, u, prm):
+        return problem, u, info, True
+    return (*_refine(disc, problem, u, info, prm, options), False)
 
 
-def _refine(disc: Discretisation, problem, u, info, prm, options):
+def _refine(disc: Discretisation, problem, u, info: SolveInfo, prm, options):
     """The refinement rounds of :func:`_solve_and_refine` from a solved state."""
     rounds = 0
-    while info["converged"] and rounds < options.adapt:
+    while info.converged and rounds < options.adapt:
         X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
         if X is None:
             break
         rounds += 1
-        finer, u_fine = disc.refined(problem, u, prm, X, options)
+        finer, u_fine = disc.remeshed(problem, u, prm, X, getattr(problem, "Z", None),
+                                      options)
         with stage(f"{disc.name} refinement round {rounds}, {finer.n_dofs:,} unknowns"):
             u, info_fine = _iterate(finer, u_fine, prm, options)
-        info_fine["iterations"] += info["iterations"]
-        info_fine["history"] = list(info["history"]) + list(info_fine["history"])
-        problem, info = finer, info_fine
-    info["adapt_rounds"] = rounds
+        problem, info = finer, info_fine.after(info)
+    info.adapt_rounds = rounds
     return problem, u, info
 
 
-def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None = None,
+def solve_fe(disc: Discretisation, case: Case, options, initial=None,
              raise_on_failure: bool = True) -> Result:
     """Solve ``case`` with the model ``disc`` and its ``options``; see the module text.
 
-    A start from ``initial`` (continuation) that fails or ends inadmissible is retried from
-    a cold start, so the answer never depends on the path. A cold start that fails or ends
-    inadmissible is retried from the model's safe start on the same mesh, then on finer
-    meshes. Raises :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when
-    no converged, admissible solution is found, unless ``raise_on_failure`` is False.
+    ``initial``: a result (or its :class:`~webfem.result.State`) to start from; a start
+    from it that fails or ends inadmissible is retried from a cold start, so the answer never
+    depends on the path. A cold start that fails or ends inadmissible is retried from the
+    model's safe start on the same mesh, then on finer meshes. Raises
+    :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when no converged,
+    admissible solution is found, unless ``raise_on_failure`` is False.
     """
     thin_film_check(case)
     wrap_length_check(case)
     t0 = time.perf_counter()
+    restart = initial.restart if isinstance(initial, Result) else initial
     prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
     try:
-        start, problem, u, info, options = _answer(disc, case, prm, options, initial)
+        start, problem, u, info, options = _answer(disc, case, prm, options, restart)
     except (np.linalg.LinAlgError, ArithmeticError) as err:
         raise ConvergenceError(
             f"{disc.name}: the discrete problem could not be built or solved "
@@ -143,103 +167,92 @@ def solve_fe(disc: Discretisation, case: Case, options, initial: Result | None =
             "precision the solver needs: a lower level or webfem's default mesh may help",
             None) from None
     mesh_error = MeshError()
-    if info["converged"] and options.estimate:
+    if info.converged and options.estimate:
         problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
                                                             options, _iterate)
-        info["iterations"] += mesh_error.iterations
+        info.iterations += mesh_error.iterations
         if finer is not None:
-            info["history"] = list(info["history"]) + list(finer["history"])
-            info.update(residual=finer["residual"], reason=finer.get("reason", "") + (
-                f" (on the mesh the error estimate asked for, {mesh_error.rounds} "
-                f"bisection{'s' if mesh_error.rounds > 1 else ''} of every cell)"))
-    elapsed = time.perf_counter() - t0
-    result = _result(disc, case, problem, u, prm, info, elapsed, options, start.solver,
-                     mesh_error)
+            rounds = mesh_error.rounds
+            info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
+                                "history": list(info.history) + list(finer.history),
+                                "reason": f"{finer.reason} (on the mesh the error estimate "
+                                          f"asked for, {rounds} bisection"
+                                          f"{'s' if rounds > 1 else ''} of every cell)"})
+    result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
+                          options, start, mesh_error)
     if not result.summary.converged and raise_on_failure:
         raise ConvergenceError(f"{disc.name} ({options.method}) did not converge: "
-                               f"{info['reason']} after {info['iterations']} iterations, "
-                               f"residual {info['residual']:.3e}", result, info.get("history"))
+                               f"{info.reason} after {info.iterations} iterations, "
+                               f"residual {info.residual:.3e}", result, info.history)
     return result
 
 
-def _ok(info, why) -> bool:
-    return bool(info["converged"]) and not why
+def _ok(info: SolveInfo, why) -> bool:
+    return info.converged and not why
 
 
-def _hopeless(info) -> bool:
+def _hopeless(info: SolveInfo) -> bool:
     """A failure no other start or finer mesh mends: the residual stalls at its rounding
     floor above the tolerance (a finer mesh only raises the floor)."""
-    return "rounding floor" in info.get("reason", "")
+    return "rounding floor" in info.reason
 
 
-def _answer(disc, case, prm, options, initial):
-    """The remedies a careful analyst tries, in order: the continued start (``initial``),
+def _answer(disc, case, prm, options, restart):
+    """The remedies a careful analyst tries, in order: the continued start (``restart``),
     the cold start, the model's safe start on the same mesh, the direct state refined, finer
     meshes. Returns ``(start, problem, u, info, options)`` of the answer, or of the last
-    attempt with ``info["converged"]`` False and the reason."""
+    attempt with ``info.converged`` False and the reason."""
     with stage(f"{disc.name} start"):
-        start = disc.start(case, prm, options, initial)
-    safe = case if hasattr(disc, "safe_start") else None
-    problem, u, info = _solve_and_refine(disc, start, prm, options,
-                                         safe if initial is None else None)
-    why = admissibility(case, problem, u, prm) if info["converged"] else None
-    if initial is not None and not _ok(info, why):
+        start = disc.start(case, prm, options, restart)
+    problem, u, info, unrefined = _solve_and_refine(disc, start, prm, options,
+                                                    case if restart is None else None)
+    why = admissibility(case, problem, u, prm) if info.converged else None
+    if restart is not None and not _ok(info, why):
         cold = disc.start(case, prm, options, None)
-        problem2, u2, info2 = _solve_and_refine(disc, cold, prm, options, safe)
-        _merge(info2, info, f"cold start after the continued start "
-                            f"{'ended inadmissible: ' + why if why else 'failed'}")
-        start, problem, u, info = cold, problem2, u2, info2
-        why = admissibility(case, problem, u, prm) if info["converged"] else None
+        problem, u, info2, unrefined = _solve_and_refine(disc, cold, prm, options, case)
+        info = info2.after(info, "cold start after the continued start "
+                                 + (f"ended inadmissible: {why}" if why else "failed"))
+        start = cold
+        why = admissibility(case, problem, u, prm) if info.converged else None
     if not _ok(info, why) and not _hopeless(info):
-        start, problem, u, info, why = _from_safe_start(disc, case, prm, options, start,
-                                                        problem, u, info, why)
-    if info.pop("unrefined", False) and why:
+        start, problem, u, info, why, used = _from_safe_start(disc, case, prm, options, start,
+                                                              problem, u, info, why)
+        unrefined = unrefined and not used
+    if unrefined and why:
         # no safe answer: the direct state is refined as any other (a coarse mesh may be
         # what let the web through its asperities)
         problem, u, info = _refine(disc, problem, u, info, prm, options)
-        why = admissibility(case, problem, u, prm) if info["converged"] else None
+        why = admissibility(case, problem, u, prm) if info.converged else None
     if why:
-        _no_admissible_solution(case, prm, why)
+        no_admissible_solution(case, prm, why)
     if not _ok(info, why) and not _hopeless(info):
         start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
                                                                  start, problem, u, info, why)
-    if why and info["converged"]:
-        _no_admissible_solution(case, prm, why, problem, u)
+    if why and info.converged:
+        no_admissible_solution(case, prm, why, problem, u)
     if why:
-        info["converged"] = False
-        info["reason"] = f"converged to an inadmissible field: {why}"
+        info.converged = False
+        info.reason = f"converged to an inadmissible field: {why}"
     return start, problem, u, info, options
-
-
-def _merge(info: dict, before: dict, note: str = "") -> None:
-    """``info`` of a solve that followed the solve of ``before``: iterations and residual
-    history added, ``note`` appended to the reason."""
-    info["iterations"] += before["iterations"]
-    info["history"] = list(before["history"]) + list(info["history"])
-    if note:
-        info["reason"] = f"{info.get('reason', '')} ({note})"
 
 
 def _from_safe_start(disc, case, prm, options, start, problem, u, info, why):
     """A state on the starting mesh that failed, or converged but is inadmissible, may be a
     spurious branch of the nonlinear problem or a poor start, not a mesh too coarse: the
-    model's safe start on the same mesh (``disc.safe_start``, e.g. the 1-D model's
-    continuation from the Eshel-Elrod problem) is tried first. Its answer is taken only when
-    it is converged and admissible."""
-    if not hasattr(disc, "safe_start"):
-        return start, problem, u, info, why
+    model's safe start on the same mesh (e.g. the 1-D model's continuation from the
+    Eshel-Elrod problem) is tried first. Its answer is taken only when it is converged and
+    admissible (the last value says whether it was)."""
     with stage(f"{disc.name} safe start"):
         safe = disc.safe_start(case, prm, options)
     if safe is None:
-        return start, problem, u, info, why
-    problem2, u2, info2 = _solve_and_refine(disc, safe, prm, options)
-    why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
+        return start, problem, u, info, why, False
+    problem2, u2, info2, _ = _solve_and_refine(disc, safe, prm, options)
+    why2 = admissibility(case, problem2, u2, prm) if info2.converged else why
     if not _ok(info2, why2):
-        return start, problem, u, info, why
-    _merge(info2, info, "from the safe start on the same mesh: the direct start "
-                        + (f"ended on an inadmissible branch: {why}" if why
-                           else f"failed: {info.get('reason', '')}"))
-    return safe, problem2, u2, info2, None
+        return start, problem, u, info, why, False
+    note = "from the safe start on the same mesh: the direct start " + (
+        f"ended on an inadmissible branch: {why}" if why else f"failed: {info.reason}")
+    return safe, problem2, u2, info2.after(info, note), None, True
 
 
 #: The second finer mesh of :func:`_on_finer_meshes` is tried only while the first finer one
@@ -261,75 +274,12 @@ def _on_finer_meshes(disc, case, prm, options, start, problem, u, info, why):
         finer_options = options.replace(level=level)
         with stage(f"{disc.name} on mesh level {level}"):
             cold = disc.start(case, prm, finer_options, None)
-            problem2, u2, info2 = _solve_and_refine(disc, cold, prm, finer_options)
-        why2 = admissibility(case, problem2, u2, prm) if info2["converged"] else why
-        _merge(info2, info, f"on mesh level {level}: level {options.level} "
-                            + (f"gave an inadmissible field: {why}" if why
-                               else f"did not converge: {info.get('reason', '')}"))
-        start, problem, u, info, why = cold, problem2, u2, info2, why2
+            problem2, u2, info2, _ = _solve_and_refine(disc, cold, prm, finer_options)
+        why2 = admissibility(case, problem2, u2, prm) if info2.converged else why
+        note = f"on mesh level {level}: level {options.level} " + (
+            f"gave an inadmissible field: {why}" if why else f"did not converge: {info.reason}")
+        start, problem, u, info, why = cold, problem2, u2, info2.after(info, note), why2
         options = finer_options
         if _ok(info, why) or _hopeless(info):
             break
     return start, problem, u, info, options, why
-
-
-def _result(disc, case, problem, u, prm, info, elapsed, options, solver,
-            mesh_error: MeshError) -> Result:
-    Hs = case.h_scale
-    ro = read_out(case, problem, u, prm)
-    extra = dict(disc.summary_extra(case, problem, options))
-    if hasattr(disc, "summary_state"):
-        extra.update(disc.summary_state(case, problem, u, prm, ro.pts, ro.wts))
-    warnings = (list(_warnings(case, options)) + list(extra.pop("warnings", []))
-                + list(mesh_error.notes))
-    slip = slip_warning(case, ro.h_min)
-    if slip:
-        warnings.append(slip)
-    shares = ro.shares
-    summary = Summary(
-        model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,
-        h_min=ro.h_min, x_min=ro.x_min,
-        regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
-        eq21_valid=bool(eq21_valid(case.beta, case.lam)),
-        converged=bool(info["converged"]), iterations=int(info["iterations"]),
-        n_dofs=int(problem.n_dofs), solve_time_s=elapsed, residual=float(info["residual"]),
-        h_c=float(prm.H_c * Hs), sigma=case.sigma, share_boundary=shares[0],
-        share_mixed=shares[1], share_fluid=shares[2], contact_share=ro.contact_share,
-        eps=case.eps, kappa=case.kappa, U=case.U, U_slide=case.U_slide,
-        method=options.method, mesh=disc.mesh_text(problem, options),
-        warnings=tuple(warnings), adapt_rounds=info.get("adapt_rounds", 0),
-        solver_message=info.get("reason", ""), T_eff=case.tension_eff,
-        bending_stiffness_used=case.bending_used, effects=included(case), **ro.traction,
-        **summary_keys(mesh_error), **{"n_cells": len(problem.X) - 1, **extra})
-    diagnostics = Diagnostics(
-        method=options.method, history=tuple(info.get("history", [])),
-        reason=info.get("reason", ""), continuation=tuple(info.get("steps", [])),
-        options=options, wrap_h=ro.h, wrap_w=ro.wts / prm.beta, wrap_p=ro.p,
-        wrap_dpdx=ro.dpdx,
-        omegas=info.get("omegas"),
-        block_iterations=info.get("block_iterations"),
-        solver={**solver, "problem": problem, "state": u})
-    return Result(case, summary, _node_fields(case, problem, u, prm), diagnostics,
-                  disc.film(case, problem, u, prm))
-
-
-def _warnings(case: Case, options):
-    if not options.compressible and case.p_bar > 0.02 * case.air.ambient_pressure:
-        ratio = case.p_bar / case.air.ambient_pressure
-        yield (f"incompressible film with T/R = {ratio:.3g} p_a > 0.02 p_a: compressibility "
-               f"shifts the central gap by about {-45 * ratio:.2g} % (use compressible=True)")
-
-
-def _node_fields(case: Case, problem, u, prm: FoilParameters) -> Fields:
-    X = problem.X
-    Hs = case.h_scale
-    H = problem.gap(u, prm, X)
-    h = H * Hs
-    # one-sided differences at the ends (the pressure is only defined inside the domain)
-    inner = np.clip(X, X[0] + 1e-6, X[-1] - 1e-6)
-    p, dpdx = pressure_and_gradient(case, problem, u, inner)
-    p_rel = p - case.air.ambient_pressure
-    return Fields(x=X * case.x_scale, h=h, w=h - forms.departure(X, prm.beta) * Hs,
-                  p_rel=p_rel, p=p, p_contact=forms.contact_law(H, prm.as_form_args())[0]
-                  * case.p_bar, in_wrap=forms.in_wrap(X, prm.beta),
-                  **friction_for(case, h, resting=True, p=p, dpdx=dpdx))

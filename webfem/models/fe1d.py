@@ -40,27 +40,19 @@ from ..fem import forms
 from ..fem.mesh import graded_nodes, refine_nodes
 from ..fem.meshfile import read_x_nodes
 from ..fem.scaling import FoilParameters
-from ..result import Result
-from .driver import Start, solve_fe
+from ..result import Result, State
+from .driver import Discretisation, Start, solve_fe
 from .line import FoilBearing1D
-from .refine import minimum
 from .model_error import fe1d_errors
 from .options import FE1DOptions
+from .outcome import Facts
 
-__all__ = ["FoilParameters", "FoilBearing1D", "LINE", "solve", "solve_case", "NAME"]
+__all__ = ["FoilParameters", "FoilBearing1D", "ProblemCache", "LINE", "solve", "solve_case",
+           "NAME"]
 
 NAME = "fe1d"
 #: The defaults of :class:`~webfem.models.options.FE1DOptions`, by name (read-only view).
 DEFAULTS = FE1DOptions().to_dict()
-#: The smallest-gap search of the driver, under the name older code imports.
-_minimum = minimum
-
-
-_CACHE: dict = {}
-#: Discrete problems kept in :data:`_CACHE` (a cold solve of the base case builds 5).
-_CACHE_SIZE = 12
-
-
 def _nodes(beta, entry, level, nodes=None) -> np.ndarray:
     """The starting X nodes: webfem's graded mesh, or the user's (``nodes``, scaled), with the
     wrap edges added as nodes (the wrap pressure T/R starts and stops there)."""
@@ -79,29 +71,35 @@ def _nodes(beta, entry, level, nodes=None) -> np.ndarray:
     return refine_nodes(X, level)
 
 
-def _problem(beta, entry, level, order, nodes=None) -> FoilBearing1D:
-    """One discrete problem per mesh, reused across solves of a sweep."""
-    return _cached(_nodes(beta, entry, level, nodes), order)
+class ProblemCache:
+    """Discrete problems by their nodes and element order, built once: the starting meshes
+    and the refined ones (a repeated solve, and often a sweep's next point, refine to the
+    same nodes). The least recently used makes room for a new one beyond ``size``, so a
+    sweep keeps its starting mesh while its refined ones come and go. A problem holds no
+    state of a solve that could change the next one's answer (tests/test_trust.py)."""
 
+    def __init__(self, size: int = 12):
+        self.size = size
+        self._problems: dict = {}
 
-def _cached(X, order) -> FoilBearing1D:
-    """The discrete problem on the nodes X, built once: the starting meshes and the refined
-    ones (a repeated solve, and often a sweep's next point, refine to the same nodes). The
-    least recently used problem makes room for a new one beyond :data:`_CACHE_SIZE`, so a
-    sweep keeps its starting mesh while its refined ones come and go."""
-    key = (X.size, float(X[0]), float(X[-1]), order, X.tobytes())
-    problem = _CACHE.pop(key, None)
-    if problem is None:
-        problem = FoilBearing1D(X, order=order)
-        while len(_CACHE) >= _CACHE_SIZE:
-            _CACHE.pop(next(iter(_CACHE)))
-    _CACHE[key] = problem                      # the most recently used last
-    return problem
+    def __call__(self, X, order) -> FoilBearing1D:
+        X = np.asarray(X, float)
+        key = (X.size, float(X[0]), float(X[-1]), order, X.tobytes())
+        problem = self._problems.pop(key, None)
+        if problem is None:
+            problem = FoilBearing1D(X, order=order)
+            while len(self._problems) >= self.size:
+                self._problems.pop(next(iter(self._problems)))
+        self._problems[key] = problem                # the most recently used last
+        return problem
+
+    def clear(self) -> None:
+        self._problems.clear()
 
 
 def _transfer(coarse: FoilBearing1D, u, prm, fine: FoilBearing1D) -> np.ndarray:
-    """A coarse state on a finer nested mesh (exact for the nested P1/P2 and Hermite spaces
-    up to the interpolation of P2 midpoints)."""
+    """A state on another mesh (exact on a nested finer one for the P1/P2 and Hermite
+    spaces, up to the interpolation of P2 midpoints)."""
     v = np.zeros(fine.n_dofs)
     xn = fine.X
     # slope of W: derivative of the Hermite interpolant through probes at +- a small offset
@@ -119,78 +117,82 @@ def _transfer(coarse: FoilBearing1D, u, prm, fine: FoilBearing1D) -> np.ndarray:
     return v
 
 
-def _start(problem: FoilBearing1D, prm: FoilParameters, case: Case, initial) -> np.ndarray:
-    """Start vector: the previous sweep point mapped through the scaled gap, else cold."""
-    if initial is None or initial["model"] != NAME or "x" not in initial.fields:
-        return problem.initial_guess(prm)
-    prev = initial.fields
-    # carry the gap shape over in scaled units: H(X) of the previous point, re-centred
-    X = problem.X
-    Hs_prev = initial.case.h_scale
-    Xprev = prev["x"] / initial.case.x_scale
-    e_prev = 0.5 * initial.case.beta
-    e = 0.5 * prm.beta
-    # map positions relative to the nearer wrap edge so the entry and exit zones line up
-    Xmap = np.where(X < 0, X + e - e_prev, X - e + e_prev)
-    H = np.interp(Xmap, Xprev, prev["h"] / Hs_prev)
-    P = np.interp(Xmap, Xprev, prev["p_rel"] / initial.case.p_bar)
-    u = problem.initial_guess(prm)
-    W = H - forms.departure(X, prm.beta)
-    W[0] = W[-1] = 0.0
-    u[problem.iW] = W
-    u[problem.iWx] = np.gradient(W, X)
-    xP = problem.basis.doflocs[0][problem.iP]
-    u[problem.iP] = np.interp(xP, X, P)
-    u[problem.fixed] = 0.0
-    return u
-
-
-class _Line:
+class _Line(Discretisation):
     """The 1-D model's part of the shared driver (:mod:`webfem.models.driver`)."""
 
     name = NAME
 
-    def start(self, case: Case, prm: FoilParameters, options: FE1DOptions, initial) -> Start:
+    def __init__(self):
+        #: the discrete problems of recent solves, kept for the next (bounded)
+        self.problems = ProblemCache()
+
+    def _start_problem(self, prm, options, case) -> FoilBearing1D:
         nodes = options.nodes
         if options.mesh is not None:
             nodes = read_x_nodes(options.mesh) / case.x_scale
-        problem = _problem(prm.beta, options.entry, options.level, options.order, nodes)
-        return Start(problem, _start(problem, prm, case, initial))
+        return self.problems(_nodes(prm.beta, options.entry, options.level, nodes),
+                             options.order)
+
+    def start(self, case: Case, prm: FoilParameters, options: FE1DOptions,
+              restart: State | None) -> Start:
+        problem = self._start_problem(prm, options, case)
+        return Start(problem, self._restarted(problem, prm, options, restart))
+
+    def _restarted(self, problem, prm, options, restart) -> np.ndarray:
+        """The start vector: a 1-D state of a nearby case mapped through the scaled gap
+        (positions relative to the nearer wrap edge, so the entry and exit zones line up),
+        else the cold start."""
+        if restart is None or restart.model != NAME:
+            return problem.initial_guess(prm)
+        old = self.problems(restart.X, options.order)
+        if old.n_dofs != restart.u.size:
+            return problem.initial_guess(prm)
+        prev = FoilParameters.from_case(restart.case, options.compressible, options.contact,
+                                        options.floor)
+        Xprev = old.X
+        inner = np.clip(Xprev, Xprev[0] + 1e-6, Xprev[-1] - 1e-6)
+        e_prev, e = 0.5 * prev.beta, 0.5 * prm.beta
+        X = problem.X
+        Xmap = np.where(X < 0, X + e - e_prev, X - e + e_prev)
+        H = np.interp(Xmap, Xprev, old.gap(restart.u, prev, Xprev))
+        P = np.interp(Xmap, Xprev, old.pressure(restart.u, inner))
+        u = problem.initial_guess(prm)
+        W = H - forms.departure(X, prm.beta)
+        W[0] = W[-1] = 0.0
+        u[problem.iW] = W
+        u[problem.iWx] = np.gradient(W, X)
+        xP = problem.basis.doflocs[0][problem.iP]
+        u[problem.iP] = np.interp(xP, X, P)
+        u[problem.fixed] = 0.0
+        return u
 
     def safe_start(self, case: Case, prm: FoilParameters, options: FE1DOptions) -> Start | None:
         """The starting mesh solved along the Eshel-Elrod continuation from cold (Newton
-        only): the driver's second try when the direct start converged to an inadmissible
-        branch (at 15-20 m/s on the base case the direct cold start ends with the web through
-        the roller at the exit, the continuation on the physical branch on the same mesh).
-        None when it does not converge."""
+        only): the driver's second try when the direct start failed or converged to an
+        inadmissible branch (at 15-20 m/s on the base case the direct cold start ends with
+        the web through the roller at the exit, the continuation on the physical branch on
+        the same mesh). None when it does not converge."""
         if options.method != "newton" or not options.continuation:
             return None
-        problem = self.start(case, prm, options, None).problem
+        problem = self._start_problem(prm, options, case)
         u, info = problem.solve_continued(prm, options)
-        if not info["converged"]:
+        if not info.converged:
             return None
-        return Start(problem, u, iterations=info["iterations"])
-
-    def refined(self, problem, u, prm, X, options):
-        finer = _cached(np.asarray(X, float), options.order)
-        return finer, _transfer(problem, u, prm, finer)
+        return Start(problem, u, info=info)
 
     def remeshed(self, problem, u, prm, X, Z, options):
         """The problem on the nodes X (coarser or finer) and ``u`` carried over to it."""
-        return self.refined(problem, u, prm, X, options)
+        other = self.problems(np.asarray(X, float), options.order)
+        return other, _transfer(problem, u, prm, other)
 
     def mesh_text(self, problem, options) -> str:
         return f"{line_mesh_text(problem.X, options)}, P{options.order}/Hermite"
 
-    def summary_extra(self, case: Case, problem, options) -> dict:
-        if case.lam < 7.0:
-            return {"warnings": [f"lambda = {case.lam:.3g}: a narrow web leaks air at its "
-                                 "edges, which the 1-D (infinitely wide) model ignores; its "
-                                 "gap is too large"]}
-        return {}
-
-    def film(self, case, problem, u, prm):
-        return None
+    def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
+        warnings = ((f"lambda = {case.lam:.3g}: a narrow web leaks air at its edges, which "
+                     "the 1-D (infinitely wide) model ignores; its gap is too large",)
+                    if case.lam < 7.0 else ())
+        return Facts(n_cells=len(problem.X) - 1, warnings=warnings)
 
 
 def line_mesh_text(X, options) -> str:

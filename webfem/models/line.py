@@ -16,11 +16,12 @@ from ..errors import InputError
 from ..fem import forms
 from ..fem.hermite import Composite, HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
+from ..fem.continuation import FIRST_TRY, eshel_elrod
 from ..fem.newton import newton, norm2
+from ..fem.outcome import SolveInfo
 from ..fem.picard import frozen_coefficient_picard, picard
 from ..fem.scaling import FoilParameters
 from ..fem.systems import LineSystem
-from ..progress import stage
 from .options import FE1DOptions
 
 __all__ = ["FoilBearing1D"]
@@ -133,93 +134,40 @@ class FoilBearing1D:
         return self._probe_p(np.asarray(X, float), u)
 
     # -- solvers ------------------------------------------------------------------------
-    def _newton(self, u0, prm, tol, max_iter, rows=None):
+    def newton(self, u0, prm, tol, max_iter, rows=None):
+        """Damped Newton on the ``rows`` (default: every free unknown)."""
         return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
                       self.free if rows is None else rows, tol=tol, max_iter=max_iter)
 
     def consistent_pressure(self, u, prm, tol=1e-8):
         """Film pressure for the web as it is (a film-only solve): without it a cold
         start's first coupled Newton step is wild and the line search fails."""
-        out = self._newton(u, prm, tol, 10, rows=self.free_P)
+        out = self.newton(u, prm, tol, 10, rows=self.free_P)
         return out.u if out.converged else u
 
     def solve_newton(self, u0, prm, options: FE1DOptions | None = None):
-        """Newton on the coupled system; on failure, continuation from the Eshel-Elrod
-        problem (K, d and Dn scaled by s from 0 to 1, adaptive steps).
-
-        Returns ``(u, info)``; ``info`` has converged, iterations (all Newton steps, including
-        the continuation's), residual, history, reason and continuation steps.
-        """
+        """Newton on the coupled system; on failure (``options.continuation``), the
+        continuation from the Eshel-Elrod problem (:func:`webfem.fem.continuation.
+        eshel_elrod`). Returns ``(u, SolveInfo)``; its iterations count every Newton step,
+        the continuation's included."""
         options = options or FE1DOptions()
-        tol, max_iter, continuation = options.tol, options.max_iter, options.continuation
+        tol, max_iter = options.tol, options.max_iter
         # a direct attempt; a start that needs more than ~25 damped steps is better served by
-        # the continuation below
-        first_try = min(max_iter, 25) if continuation else max_iter
-        out = self._newton(self.consistent_pressure(u0, prm), prm, tol, first_try)
-        info = dict(iterations=out.iterations, history=list(out.history), steps=[1.0])
-        if out.converged or not continuation:
-            info.update(converged=out.converged, residual=out.residual, reason=out.reason)
+        # the continuation
+        first_try = min(max_iter, FIRST_TRY) if options.continuation else max_iter
+        out = self.newton(self.consistent_pressure(u0, prm), prm, tol, first_try)
+        info = SolveInfo.of(out)
+        if out.converged or not options.continuation:
             return out.u, info
         return self.solve_continued(prm, options, info)
 
     def solve_continued(self, prm, options: FE1DOptions | None = None,
-                        info: dict | None = None):
-        """Newton along the continuation from the Eshel-Elrod problem, from its cold start
-        (the safe start: the driver also uses it when a direct start converged to an
-        inadmissible branch). ``info``: iterations and history spent before, added to.
-
-        Returns ``(u, info)`` as :meth:`solve_newton`.
-        """
+                        before: SolveInfo | None = None):
+        """The Eshel-Elrod continuation from its cold start (the safe start: the driver also
+        uses it when a direct start converged to an inadmissible branch); ``before``: the
+        iterations already spent. Returns ``(u, SolveInfo)``."""
         options = options or FE1DOptions()
-        tol, max_iter = options.tol, options.max_iter
-        first_try = min(max_iter, 25)
-        info = info if info is not None else dict(iterations=0, history=[], steps=[])
-        # continuation from the Eshel-Elrod problem: permeation K, compressibility d and
-        # bending Dn scaled by s from 0 to 1 (the impermeable membrane converges from cold).
-        # From its solution the full problem is tried at once: a far better start than the
-        # cold one (on a 110-case grid all 18 continued solves took this jump, 7-12 Newton
-        # steps fewer each, the same mesh and gaps to 1e-12; issue 14). If the jump fails
-        # (after at most ``first_try`` steps, as the direct attempt), the steps are 0.25,
-        # then doubled (0.25, 0.75, 1), each failure quartering the step.
-        target = prm
-        u = self.initial_guess(target.homotopy(0.0))
-        s, ds, steps = 0.0, 0.25, []
-        first, jump = True, False
-        while True:
-            p = target.homotopy(s)
-            with stage(f"Eshel-Elrod continuation, s = {s:.3g}"):
-                out = self._newton(self.consistent_pressure(u, p), p, tol,
-                                   first_try if jump else max_iter)
-            info["iterations"] += out.iterations
-            info["history"] += list(out.history)
-            if out.converged:
-                u = out.u
-                steps.append(s)
-                if s >= 1.0:
-                    info.update(converged=True, residual=out.residual, reason=out.reason,
-                                steps=steps)
-                    return u, info
-                ds = min(2.0 * ds, 1.0) if not first else ds
-                s_prev = s
-                s, jump = (1.0, True) if first else (min(1.0, s + ds), False)
-                first = False
-            elif jump:
-                # the jump from s = 0 failed: the stepped schedule from there
-                jump = False
-                s = min(1.0, s_prev + ds)
-            else:
-                if first:
-                    info.update(converged=False, residual=out.residual,
-                                reason="continuation: Eshel-Elrod start failed: " + out.reason,
-                                steps=steps)
-                    return out.u, info
-                ds *= 0.25
-                if ds < 1e-4:
-                    info.update(converged=False, residual=out.residual,
-                                reason=f"continuation stalled at s = {s_prev:.4g}",
-                                steps=steps)
-                    return u, info
-                s = min(1.0, s_prev + ds)
+        return eshel_elrod(self, prm, options.tol, options.max_iter, before)
 
     def solve_picard(self, u0, prm, options: FE1DOptions | None = None):
         """Picard iteration on the coupled system: film and web solved together each sweep
@@ -245,7 +193,7 @@ class FoilBearing1D:
         diverges or stalls on the paper's cases (see the tests and the issue notes).
 
         The fixed-point residual is the change of the web DOFs, ``||G(W) - W||_inf`` in scaled
-        units; ``info['residual']`` is the coupled residual norm at the end (as in Newton).
+        units; the info's ``residual`` is the coupled residual norm at the end (as in Newton).
         """
         options = options or FE1DOptions()
         tol, omega, aitken = options.tol, options.omega, options.aitken
@@ -256,7 +204,7 @@ class FoilBearing1D:
 
         def sub_newton(v, rows):
             """Newton on one block (rows) with the other block frozen."""
-            return self._newton(v, prm, tol * 1e-2, 30, rows=rows)
+            return self.newton(v, prm, tol * 1e-2, 30, rows=rows)
 
         def G(w_dofs):
             v = u.copy()
@@ -277,6 +225,6 @@ class FoilBearing1D:
         film = sub_newton(u, iP)
         u = film.u
         res = norm2(self.residual(u, prm)[self.free])
-        return u, dict(converged=out.converged, iterations=out.iterations, residual=res,
-                       history=out.history, reason=out.reason, omegas=out.omegas,
-                       block_iterations=counts)
+        return u, SolveInfo(converged=out.converged, iterations=out.iterations, residual=res,
+                            history=list(out.history), reason=out.reason, omegas=out.omegas,
+                            block_iterations=counts)

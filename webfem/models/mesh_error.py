@@ -106,8 +106,8 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
         with stage(f"{disc.name} error estimate on the coarser mesh"):
             coarse, uc = disc.remeshed(problem, u, prm, Xc, Zc, options)
             uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
-        out.iterations += info["iterations"]
-        if info["converged"]:
+        out.iterations += info.iterations
+        if info.converged:
             out.errors = errors_between(case, here, read_out(case, coarse, uc, prm))
             out.basis = (f"change from the mesh with cells twice as long ({coarse.n_dofs:,} "
                          f"against {problem.n_dofs:,} unknowns)")
@@ -124,8 +124,8 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
         with stage(f"{disc.name} error estimate asks for a finer mesh, {fine.n_dofs:,} "
                    "unknowns"):
             uf, info = iterate(fine, uf, prm, options)
-        out.iterations += info["iterations"]
-        if not info["converged"] or admissibility(case, fine, uf, prm):
+        out.iterations += info.iterations
+        if not info.converged or admissibility(case, fine, uf, prm):
             out.notes.append(f"the mesh with every cell halved ({fine.n_dofs:,} unknowns) gave "
                              "no admissible answer from this one; the estimate stays that of "
                              "this mesh")

@@ -15,10 +15,21 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 from scipy.special import exp1
+
+
+@functools.lru_cache(maxsize=16)
+def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """numpy's Gauss-Legendre points and weights on [-1, 1], computed once per ``n`` (an
+    eigenvalue problem each time otherwise: most of the closed form's cost)."""
+    g, w = np.polynomial.legendre.leggauss(n)
+    g.flags.writeable = False
+    w.flags.writeable = False
+    return g, w
 
 from .contact import RESTING_SHARE, contact_gap, load_ratio, regime_code, resting_gap
 
@@ -285,7 +296,7 @@ def wrap_average_numeric(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C
             s_cut = np.where(flat, 0.0, (level - h_in) / np.where(flat, 1.0, span))
         cuts.append(np.clip(s_cut, 0.0, 1.0))
     cuts = np.sort(np.stack(cuts), axis=0)
-    g, gw = np.polynomial.legendre.leggauss(n)
+    g, gw = gauss_legendre(n)
     total = np.zeros_like(h_in)
     shares = np.zeros((3,) + h_in.shape)
     for a, b in zip(cuts[:-1], cuts[1:]):
@@ -335,7 +346,7 @@ def wrap_average_loads(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
             cuts.append(np.clip(np.where(flat, 0.0, (level - h_in) / np.where(flat, 1.0, span)),
                                 0.0, 1.0))
     cuts = np.sort(np.concatenate(cuts, axis=-1), axis=-1)
-    g, gw = np.polynomial.legendre.leggauss(n)
+    g, gw = gauss_legendre(n)
     total = np.zeros(h_in.shape[:-1])
     shares = np.zeros((3,) + total.shape)
     for j in range(cuts.shape[-1] - 1):

@@ -1,0 +1,288 @@
+"""The 2-D discrete problem: the film over the wrap domain coupled to the 1-D web, on one mesh.
+
+The film is solved on [X_s, X_e] x [0, lambda] (half width, symmetry at the centreline) or
+[-lambda, lambda] (full width) in scaled coordinates, with Q2 (or Q1) quadrilaterals on the
+tensor product of the web's nodes in X and nodes across the width; a grooved roller's periodic
+cell is [0, pitch/2] with symmetry on both sides. The web is the Hermite beam/membrane of the
+1-D model, loaded by the width-averaged film pressure plus the asperity contact; the two
+meshes share their X nodes and the web's basis is evaluated exactly at the film's quadrature
+points (:mod:`webfem.fem.transfer`). The weak forms are :mod:`webfem.fem.forms`', assembled by
+:class:`webfem.fem.systems.FilmSystem`.
+
+Every problem of a solve (the finer mesh, the coarser one of the error estimate, the wider
+web or shallower grooves of a continuation) is built from another by :meth:`FoilBearing2D.
+variant`, so what it is made of (element order, grooves, domain) is stated once.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse.linalg as spla
+from skfem import Basis, BilinearForm, ElementLineHermite, ElementQuad1, ElementQuad2
+
+from . import continuation, forms
+from .grooves import GroovePattern
+from .hermite import LineProbes
+from .mesh import line_mesh
+from .newton import newton
+from .outcome import SolveInfo
+from .picard import frozen_coefficient_picard
+from .systems import FilmSystem, width_load
+from .transfer import film_mesh, interpolate_values, quadrature_matrices, tensor_interpolation
+
+__all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS"]
+
+#: The film-only solve before a coupled Newton stops at this fraction of its first residual:
+#: it only gives Newton a pressure consistent with the web (one or two steps; solving it to
+#: 1e-8 cost two more factorisations without saving a coupled step, measured on the cases).
+START_RTOL = 1e-4
+
+#: Coupled Newton steps tried straight from the start before the film-only solve (from the
+#: 1-D solution the coupled Newton converged in 4-6 steps on the base case from 1 to 60 m/s,
+#: the same answers and 13 % less time than with the film-only solve first).
+DIRECT_STEPS = 6
+
+
+@dataclass(frozen=True)
+class FilmConfig:
+    """What a 2-D problem is made of besides its nodes: the pressure element ``order`` (1 or
+    2), the roller's ``grooves`` (None: smooth), whether Z ends at the ``web_edges`` (False:
+    the periodic cell of a grooved roller) and ``ambient_grooves`` (P = 0 in the grooves: the
+    deep-groove limit, for checks)."""
+
+    order: int = 2
+    grooves: GroovePattern | None = None
+    web_edges: bool = True
+    ambient_grooves: bool = False
+
+    def __post_init__(self):
+        if self.order not in (1, 2):
+            raise ValueError(f"order = {self.order!r} is not valid: must be 1 or 2")
+        object.__setattr__(self, "ambient_grooves",
+                           bool(self.ambient_grooves) and self.grooves is not None)
+
+
+class FoilBearing2D:
+    """The discrete coupled problem on the nodes ``X`` x ``Z``: film basis on the 2-D mesh,
+    web basis on the line. Unknowns ``u = [p (film DOFs), w (web DOFs)]``. Built once per
+    mesh; the parameters may change between calls (continuation)."""
+
+    def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2,
+                 grooves: GroovePattern | None = None, web_edges: bool = True,
+                 ambient_grooves: bool = False):
+        self.config = FilmConfig(order, grooves, bool(web_edges), ambient_grooves)
+        self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
+        self.order, self.grooves = order, grooves
+        self.web_edges, self.ambient_grooves = self.config.web_edges, \
+            self.config.ambient_grooves
+        self.width = float(self.Z[-1] - self.Z[0])
+        self.line = line_mesh(self.X)
+        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
+        self.wbasis = Basis(self.line, ElementLineHermite(), intorder=6)
+        self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges)
+        self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
+                            intorder=4 if order == 2 else 3)
+        self.T = quadrature_matrices(self.fbasis, self.wbasis)
+        self.nP, self.nW = self.fbasis.N, self.wbasis.N
+        fixed_p = self.fbasis.get_dofs({"ends", "edges"} if self.web_edges
+                                       else {"ends"}).all()
+        zq = np.asarray(self.fbasis.global_coordinates()[1])
+        #: groove depth Delta(Z) at the film's quadrature points (0: land or smooth)
+        self.groove_q = grooves.depth_at(zq) if grooves is not None else np.zeros_like(zq)
+        fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
+        if self.ambient_grooves:
+            zd = self.fbasis.doflocs[1]
+            off = np.abs(zd - grooves.pitch * np.round(zd / grooves.pitch))
+            fixed_p = np.concatenate([fixed_p, np.flatnonzero(
+                off >= 0.5 * grooves.land * (1.0 - 1e-9))])
+        self.fixed = np.unique(np.concatenate([fixed_p, fixed_w]))
+        is_free = np.ones(self.n_dofs, dtype=bool)
+        is_free[self.fixed] = False
+        self.free = np.flatnonzero(is_free)          # np.setdiff1d's answer, without a sort
+        self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
+        self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
+        self._mass, self._system = None, None
+        #: the web basis at point sets asked for again (the nodes: refinement, admissibility
+        #: and results), by the points' bytes; the last width average (film DOFs, result)
+        self._web_probes, self._average = LineProbes(self.wbasis), None
+        #: the 1-D problem and state this problem started from (width continuation)
+        self.line_start = None
+        #: True: Newton tries the coupled system straight from its start (a solved state
+        #: carried over from another mesh, or the 1-D solution) before a film-only pre-solve
+        self.direct = False
+
+    def variant(self, X=None, Z=None, **config) -> "FoilBearing2D":
+        """A problem like this one on other nodes and/or with ``config`` changed (the
+        fields of :class:`FilmConfig`); it starts directly and knows the same 1-D start."""
+        cfg = dataclasses.replace(self.config, **config)
+        other = FoilBearing2D(self.X if X is None else X, self.Z if Z is None else Z,
+                              **dataclasses.asdict(cfg) | {"grooves": cfg.grooves})
+        other.direct, other.line_start = True, self.line_start
+        return other
+
+    @property
+    def n_dofs(self) -> int:
+        return self.nP + self.nW
+
+    def _split(self, u):
+        return u[:self.nP], u[self.nP:]
+
+    @property
+    def system(self) -> FilmSystem:
+        """The assembly of this mesh's film + web system, built on first use."""
+        if self._system is None:
+            self._system = FilmSystem(self.fbasis, self.wbasis, self.T, self.width,
+                                      self.groove_q)
+        return self._system
+
+    def residual(self, u, prm) -> np.ndarray:
+        """The coupled residual."""
+        return self.system.residual(u, prm)
+
+    def jacobian(self, u, prm, newton: bool = True):
+        """Exact Jacobian, or (``newton=False``) Picard's."""
+        return self.system.jacobian(u, prm, bool(newton))
+
+    # -- fields -------------------------------------------------------------------------------
+    def at(self, X, dofs) -> np.ndarray:
+        """The web-space function with Hermite ``dofs`` at scaled points X: scikit-fem's
+        ``probes(X) @ dofs`` to the last bit (the values at the last point sets kept)."""
+        return self._web_probes(np.asarray(X, float), dofs)
+
+    def gap(self, u, prm, X) -> np.ndarray:
+        X = np.asarray(X, float)
+        return self.at(X, self._split(u)[1]) + forms.departure(X, prm.beta)
+
+    def _mass_solve(self, load) -> np.ndarray:
+        if self._mass is None:
+            mass = BilinearForm(lambda a, b, w: a * b)
+            self._mass = spla.splu(mass.assemble(self.wbasis).tocsc())
+        return self._mass.solve(load)
+
+    def width_average(self, u) -> np.ndarray:
+        """Hermite DOFs of the width-averaged film pressure: the L2 projection of
+        (1/width) int P dZ onto the web's space (the same load vector the web sees)."""
+        p = self._split(u)[0]
+        # the results ask for the pressure of one state several times (fields, summary,
+        # admissibility): the projection is kept for the last film DOFs
+        if self._average is None or not np.array_equal(self._average[0], p):
+            Pq = interpolate_values(self.fbasis, p).ravel()
+            self._average = (p.copy(), self._mass_solve(width_load(self.T, Pq, self.width)))
+        return self._average[1].copy()
+
+    def land_average(self, u) -> np.ndarray:
+        """Hermite DOFs of the film pressure averaged over the lands only (as
+        :meth:`width_average`; the whole width on a smooth roller)."""
+        land = (self.groove_q.ravel() == 0.0).astype(float)
+        Pq = interpolate_values(self.fbasis, self._split(u)[0]).ravel()
+        width = float(np.sum(self.T["dx"] * land)) / float(np.sum(self.T["dx"])) * self.width
+        return self._mass_solve(width_load(self.T, land * Pq, width))
+
+    def pressure(self, u, X) -> np.ndarray:
+        """Width-averaged film pressure at X (through :meth:`width_average`)."""
+        return self.at(X, self.width_average(u))
+
+    def film_pressure_at_vertices(self, u) -> np.ndarray:
+        """Film pressure at the mesh vertices (for VTU)."""
+        return self._split(u)[0][self.fbasis.nodal_dofs[0]]
+
+    # -- states --------------------------------------------------------------------------------
+    def start_from_line(self, problem1d, u1d, prm, pressure: bool = True) -> np.ndarray:
+        """The 1-D (infinitely wide) solution as a start: its web, and (``pressure``) its
+        pressure shaped across the width like 1 - (Z/lambda)^2 scaled to the same width
+        average."""
+        u = np.zeros(self.n_dofs)
+        xn = self.X
+        d = 1e-6
+        xa, xb = np.clip(xn - d, xn[0], xn[-1]), np.clip(xn + d, xn[0], xn[-1])
+        # one evaluation at the nodes and both sides (each point's value is its own)
+        Hn, Hb, Ha = problem1d.gap(u1d, prm, np.concatenate([xn, xb, xa])).reshape(3, -1)
+        u[self.iWv] = Hn - forms.departure(xn, prm.beta)
+        u[self.iWx] = ((Hb - forms.departure(xb, prm.beta))
+                       - (Ha - forms.departure(xa, prm.beta))) / (xb - xa)
+        if not pressure:
+            return u
+        loc = self.fbasis.doflocs
+        lam = max(abs(self.Z[0]), abs(self.Z[-1]))
+        shape = 1.5 * (1.0 - (loc[1] / lam) ** 2) if self.web_edges else 1.0
+        # the film's DOFs lie on a few lines X = const: the 1-D pressure once per line
+        x, line = np.unique(loc[0], return_inverse=True)
+        u[:self.nP] = problem1d.pressure(u1d, x)[line] * shape
+        u[self.fixed] = 0.0
+        return u
+
+    def transfer(self, u, prm, other: "FoilBearing2D") -> np.ndarray:
+        """The state ``u`` on ``other``'s mesh: the web through its values and slopes, the
+        film pressure through its own Q1/Q2 interpolant (exact on a nested finer mesh, as the
+        refinement's), so a solved state arrives solved up to what the other mesh adds."""
+        v = other.start_from_line(self, u, prm, pressure=False)
+        v[:other.nP] = tensor_interpolation(self.X, self.Z, self.order,
+                                            self.fbasis.doflocs, u[:self.nP],
+                                            other.fbasis.doflocs)
+        v[other.fixed] = 0.0
+        return v
+
+    # -- solvers -------------------------------------------------------------------------------
+    def newton(self, u0, prm, tol, max_iter, rows=None, rtol=0.0, chord=True):
+        """Damped Newton on the ``rows`` (default: every free unknown)."""
+        return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
+                      self.free if rows is None else rows, tol=tol, max_iter=max_iter,
+                      rtol=rtol, chord=chord)
+
+    def consistent_pressure(self, u, prm, tol=1e-8, rtol=0.0):
+        """Film pressure for the web as it is (a film-only Newton solve, to ``tol`` or
+        ``rtol`` times its first residual)."""
+        rows = self.free[self.free < self.nP]
+        # no chord steps: a looser start pressure sends the coupled solve on another path
+        # (on the grooved cases, more iterations before its continuation)
+        out = self.newton(u, prm, tol, 10, rows=rows, rtol=rtol, chord=False)
+        return out.u if out.converged else u
+
+    def plain_newton(self, u0, prm, tol, max_iter, direct_budget: int = 0):
+        """Newton on film + web from ``u0`` with the film pressure made consistent with its
+        web first (a film-only solve: it rescues starts whose pressure is far from the
+        web's). ``direct_budget > 0``: first try that many coupled steps straight from
+        ``u0`` (a state carried over from a solved mesh, or the 1-D solution, needs no
+        film-only solve). Returns ``(u, SolveInfo)``."""
+        first = self.newton(u0, prm, tol, direct_budget) if direct_budget else None
+        if first is not None and first.converged:
+            return first.u, SolveInfo.of(first)
+        out = self.newton(self.consistent_pressure(u0, prm, rtol=START_RTOL), prm, tol,
+                          max_iter)
+        info = SolveInfo.of(out)
+        return out.u, info.after(SolveInfo.of(first)) if first is not None else info
+
+    def solve_newton(self, u0, prm, options):
+        """Newton on film + web (``options.tol``, ``options.max_iter``); on failure: with
+        ambient grooves from the solved groove pressure, on a grooved roller continuation in
+        the groove depth, on a smooth one (when the problem knows the 1-D state it started
+        from, ``line_start``) continuation in the web width (:mod:`webfem.fem.continuation`).
+        Returns ``(u, SolveInfo)``."""
+        tol, max_iter = options.tol, options.max_iter
+        u, info = self.plain_newton(u0, prm, tol, max_iter,
+                                    DIRECT_STEPS if self.direct else 0)
+        if info.converged:
+            return u, info
+        if self.ambient_grooves:
+            # the solved groove pressure is close to ambient in deep grooves: start there
+            v, first = self.variant(ambient_grooves=False).solve_newton(u0, prm, options)
+            if first.converged:
+                v[self.fixed] = 0.0
+                u, second = self.plain_newton(v, prm, tol, max_iter)
+                return u, second.after(first, "from the solved groove pressure")
+            return u, info
+        if self.grooves is not None:
+            return continuation.groove_depth(self, u0, prm, tol, max_iter, info)
+        if self.line_start is not None:
+            return continuation.web_width(self, *self.line_start, prm, tol, max_iter, info)
+        return u, info
+
+    def solve_picard(self, u0, prm, options):
+        """Picard with the film's coefficients frozen (:func:`webfem.fem.picard.
+        frozen_coefficient_picard`); stops on the coupled residual norm, like Newton."""
+        o = options
+        return frozen_coefficient_picard(self, u0, prm, o.tol, o.omega, o.aitken,
+                                         o.picard_max_iter, o.backtrack or None, o.anderson)

@@ -1,0 +1,82 @@
+"""The typed result of an FE solve: the summary from the quantities read off the solved
+state, what the model adds (:class:`Facts`), the stated errors, the fields, the diagnostics
+and the state to restart from."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..case import Case
+from ..fem.outcome import SolveInfo
+from ..physics.closed_form import eq21_valid
+from ..physics.contact import REGIMES
+from ..physics.effects import included
+from ..physics.validity import slip_warning
+from ..result import Diagnostics, Result, Summary
+from .fields import node_fields
+from .mesh_error import MeshError
+from .readout import read_out
+
+__all__ = ["Facts", "build_result"]
+
+
+@dataclass(frozen=True)
+class Facts:
+    """What a model adds to the summary: the cells of its mesh (``n_cells``; the 2-D film's
+    ``width_cells`` across), a grooved roller's ``land_fraction``, ``groove_domain`` and
+    ``contact_share_lands``, and its ``warnings``."""
+
+    n_cells: int
+    width_cells: int | None = None
+    land_fraction: float | None = None
+    groove_domain: str | None = None
+    contact_share_lands: float | None = None
+    warnings: tuple[str, ...] = ()
+
+
+def _warnings(case: Case, options):
+    if not options.compressible and case.p_bar > 0.02 * case.air.ambient_pressure:
+        ratio = case.p_bar / case.air.ambient_pressure
+        yield (f"incompressible film with T/R = {ratio:.3g} p_a > 0.02 p_a: compressibility "
+               f"shifts the central gap by about {-45 * ratio:.2g} % (use compressible=True)")
+
+
+def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: float,
+                 options, start, mesh_error: MeshError) -> Result:
+    """The :class:`~webfem.result.Result` of the state ``u`` of ``problem``."""
+    ro = read_out(case, problem, u, prm)
+    facts = disc.facts(case, problem, u, prm, options, ro)
+    warnings = list(_warnings(case, options)) + list(facts.warnings) + list(mesh_error.notes)
+    slip = slip_warning(case, ro.h_min)
+    if slip:
+        warnings.append(slip)
+    shares = ro.shares
+    summary = Summary(
+        model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,
+        h_min=ro.h_min, x_min=ro.x_min,
+        regime=REGIMES[int(np.argmax(shares))], lambda_=case.lam, beta=case.beta,
+        eq21_valid=bool(eq21_valid(case.beta, case.lam)),
+        converged=bool(info.converged), iterations=int(info.iterations),
+        n_dofs=int(problem.n_dofs), solve_time_s=elapsed, residual=float(info.residual),
+        h_c=float(prm.H_c * case.h_scale), sigma=case.sigma, share_boundary=shares[0],
+        share_mixed=shares[1], share_fluid=shares[2], contact_share=ro.contact_share,
+        eps=case.eps, kappa=case.kappa, U=case.U, U_slide=case.U_slide,
+        method=options.method, mesh=disc.mesh_text(problem, options),
+        warnings=tuple(warnings), adapt_rounds=info.adapt_rounds,
+        solver_message=info.reason, T_eff=case.tension_eff,
+        bending_stiffness_used=case.bending_used, effects=included(case), **ro.traction,
+        **{f"error_{q}": v for q, v in mesh_error.errors.items()},
+        error_basis=mesh_error.basis, n_cells=facts.n_cells, width_cells=facts.width_cells,
+        land_fraction=facts.land_fraction, groove_domain=facts.groove_domain,
+        contact_share_lands=facts.contact_share_lands)
+    diagnostics = Diagnostics(
+        method=options.method, history=tuple(info.history), reason=info.reason,
+        continuation=tuple(info.steps), options=options, wrap_h=ro.h,
+        wrap_w=ro.wts / prm.beta, wrap_p=ro.p, wrap_dpdx=ro.dpdx, omegas=info.omegas,
+        block_iterations=info.block_iterations,
+        solver={**start.kept, "problem": problem, "state": u})
+    return Result(case, summary, node_fields(case, problem, u, prm), diagnostics,
+                  disc.film(case, problem, u, prm),
+                  restart=disc.state(case, problem, u, start))
