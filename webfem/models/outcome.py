@@ -52,7 +52,7 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
     slip = slip_warning(case, ro.h_min)
     if slip:
         warnings.append(slip)
-    shares = ro.shares
+    shares, t, e = ro.shares, ro.traction, mesh_error.errors
     summary = Summary(
         model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,
         h_min=ro.h_min, x_min=ro.x_min,
@@ -66,9 +66,13 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
         method=options.method, mesh=disc.mesh_text(problem, options),
         warnings=tuple(warnings), adapt_rounds=info.adapt_rounds,
         solver_message=info.reason, T_eff=case.tension_eff,
-        bending_stiffness_used=case.bending_used, effects=included(case), **ro.traction,
-        **{f"error_{q}": v for q, v in mesh_error.errors.items()},
-        error_basis=mesh_error.basis, n_cells=facts.n_cells, width_cells=facts.width_cells,
+        bending_stiffness_used=case.bending_used, effects=included(case),
+        mu=t["mu"], delta_T=t["delta_T"], mu_film=t["mu_film"], delta_T_film=t["delta_T_film"],
+        delta_T_required=t["delta_T_required"], delta_T_available=t["delta_T_available"],
+        slip_margin=t["slip_margin"], mu_onset=t["mu_onset"],
+        error_h_center=e["h_center"], error_h_min=e["h_min"], error_mu=e["mu"],
+        error_contact_share=e["contact_share"], error_basis=mesh_error.basis,
+        n_cells=facts.n_cells, width_cells=facts.width_cells,
         land_fraction=facts.land_fraction, groove_domain=facts.groove_domain,
         contact_share_lands=facts.contact_share_lands)
     diagnostics = Diagnostics(
