@@ -13,7 +13,7 @@ from ..fem.scaling import FoilParameters
 from ..physics.validity import contact_overload
 from .refine import minimum
 
-__all__ = ["admissibility"]
+__all__ = ["admissibility", "no_admissible_solution"]
 
 
 def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
@@ -34,8 +34,8 @@ def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
     return None
 
 
-def _no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=None,
-                            u=None) -> None:
+def no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=None,
+                           u=None) -> None:
     """An input error when the case admits no solution with a positive gap: the web lands
     and the contact law cannot carry T/R at any h >= 0, or (``problem`` and ``u`` given: a
     mesh-converged state) the web is pressed through its asperities somewhere because the

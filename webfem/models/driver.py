@@ -31,7 +31,7 @@ from ..physics.friction import friction_for
 from ..physics.validity import slip_warning, thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Diagnostics, Fields, Result, Summary
-from .admissible import _no_admissible_solution, admissibility
+from .admissible import no_admissible_solution, admissibility
 from .mesh_error import MeshError, estimate_mesh_error, summary_keys
 from .readout import pressure_and_gradient, read_out
 from .refine import adapted_nodes
@@ -199,12 +199,12 @@ def _answer(disc, case, prm, options, initial):
         problem, u, info = _refine(disc, problem, u, info, prm, options)
         why = admissibility(case, problem, u, prm) if info["converged"] else None
     if why:
-        _no_admissible_solution(case, prm, why)
+        no_admissible_solution(case, prm, why)
     if not _ok(info, why) and not _hopeless(info):
         start, problem, u, info, options, why = _on_finer_meshes(disc, case, prm, options,
                                                                  start, problem, u, info, why)
     if why and info["converged"]:
-        _no_admissible_solution(case, prm, why, problem, u)
+        no_admissible_solution(case, prm, why, problem, u)
     if why:
         info["converged"] = False
         info["reason"] = f"converged to an inadmissible field: {why}"
