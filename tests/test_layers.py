@@ -13,7 +13,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "webfem"
 
 #: Bottom (0) to top. A module may import its own layer and those below.
 LAYERS = [
-    {"errors", "units", "progress", "sections", "case", "sweepspec", "files", "bundled",
+    {"errors", "validated", "units", "progress", "sections", "keys", "case", "sweepspec",
+     "files", "bundled",
      "physics"},
     {"fem"},
     {"result", "describe"},
@@ -90,9 +91,9 @@ ALL_MODULES = {module_name(p): p for p in PACKAGE.rglob("*.py")}
 
 
 def imported_names(path: Path):
-    """Every ``(module, name)`` a file imports from webfem, at any depth (inside functions
-    and ``if TYPE_CHECKING:`` too): ``from .x import y`` gives ``("webfem.x", "y")``,
-    ``import webfem.x`` gives ``("webfem.x", None)``."""
+    """Every ``(module, name, bound as)`` a file imports from webfem, at any depth (inside
+    functions and ``if TYPE_CHECKING:`` too): ``from .x import y as z`` gives
+    ``("webfem.x", "y", "z")``, ``import webfem.x`` gives ``("webfem.x", None, None)``."""
     me = module_name(path)
     package = me.split(".") if path.name == "__init__.py" else me.split(".")[:-1]
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -104,18 +105,18 @@ def imported_names(path: Path):
                 source = node.module or ""
             if source.split(".")[0] == "webfem":
                 for alias in node.names:
-                    yield source, alias.name
+                    yield source, alias.name, alias.asname or alias.name
         elif isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.name.split(".")[0] == "webfem":
-                    yield alias.name, None
+                    yield alias.name, None, alias.asname
 
 
 def module_edges(path: Path) -> set[str]:
     """The webfem modules (files) a file's imports load by name: ``from . import x`` is
     module ``x`` when it is one, else the package's ``__init__``."""
     out = set()
-    for source, name in imported_names(path):
+    for source, name, _ in imported_names(path):
         if name is not None and f"{source}.{name}" in ALL_MODULES:
             out.add(f"{source}.{name}")
         elif source in ALL_MODULES:
@@ -123,14 +124,36 @@ def module_edges(path: Path) -> set[str]:
     return out - {module_name(path)}
 
 
+def private(name: str) -> bool:
+    """``_name`` is private; ``__version__`` and the like are not."""
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def private_names_used(path: Path) -> list[str]:
+    """The private names of other webfem modules a file uses: imported (``from .x import
+    _y``) or reached through a module it imported (``from . import x`` then ``x._y``)."""
+    used, modules = set(), {}
+    for source, name, bound in imported_names(path):
+        if name is None:
+            if bound:   # import webfem.x as m
+                modules[bound] = source
+        elif private(name):
+            used.add(f"{source}.{name}")
+        elif f"{source}.{name}" in ALL_MODULES:
+            modules[bound] = f"{source}.{name}"
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                and node.value.id in modules and private(node.attr)):
+            used.add(f"{modules[node.value.id]}.{node.attr}")
+    return sorted(used)
+
+
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PACKAGE)))
 def test_no_private_name_imported_across_modules(path):
     """A name with a leading underscore is its module's own: another module that needs it
-    needs a public, documented name (``__version__`` and the like are not private)."""
-    private = sorted(f"{source}.{name}" for source, name in imported_names(path)
-                     if name is not None and name.startswith("_")
-                     and not (name.startswith("__") and name.endswith("__")))
-    assert not private, f"{module_name(path)} imports private names {private}"
+    needs a public, documented name."""
+    used = private_names_used(path)
+    assert not used, f"{module_name(path)} uses private names of other modules: {used}"
 
 
 def import_cycles(graph: dict[str, set[str]]) -> list[list[str]]:
