@@ -90,7 +90,7 @@ def test_auto_through_the_cli(capsys):
 
 
 def test_bad_auto_options():
-    with pytest.raises(webfem.CaseError, match="quantity"):
+    with pytest.raises(webfem.InputError, match="quantity"):
         webfem.solve(Case(), model="auto", quantity="torque")
-    with pytest.raises(webfem.CaseError, match="tol"):
+    with pytest.raises(webfem.InputError, match="tol"):
         webfem.solve(Case(), model="auto", tol=2.0)

@@ -201,9 +201,9 @@ def test_failure_raises_with_history():
 
 
 def test_bad_option_is_rejected():
-    with pytest.raises(webfem.CaseError, match="method"):
+    with pytest.raises(webfem.InputError, match="method"):
         fe1d.solve(FLYING, method="secant")
-    with pytest.raises(webfem.CaseError, match="unknown fe1d option"):
+    with pytest.raises(webfem.InputError, match="unknown fe1d option"):
         fe1d.solve(FLYING, levle=2)
 
 
