@@ -116,8 +116,8 @@ def test_shallow_cell_is_the_infinitely_wide_web(line):
     assert H2 == pytest.approx(H1, rel=1e-6)
 
 
-def test_zero_width_case_is_the_smooth_case():
-    c = Case().updated({"roller.speed": 40.0})
+def test_zero_width_case_is_the_smooth_case(flying):
+    c = flying
     g = c.updated({"roller.groove_pitch": 1.27e-3, "roller.groove_depth": 0.25e-3})
     a, b = fe2d.solve(c), fe2d.solve(g)
     assert b["h_center"] == pytest.approx(a["h_center"], rel=1e-9)

@@ -40,15 +40,15 @@ def test_mesh_not_covering_the_wrap(tmp_path):
         webfem.solve(Case(), model="fe1d", mesh=tmp_path / "short.vtu")
 
 
-def test_validity_warnings():
+def test_validity_warnings(flying):
     with pytest.warns(ValidityWarning, match="outside Eq. 21"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.width": 0.02}),
+        webfem.solve(flying.updated({"web.width": 0.02}),
                      model="closed-form")
     with pytest.warns(ValidityWarning, match="incompressible film"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.tension": 150.0}),
+        webfem.solve(flying.updated({"web.tension": 150.0}),
                      model="fe1d", compressible=False)
     with pytest.warns(ValidityWarning, match="closed form leaves out bending"):
-        webfem.solve(Case().updated({"roller.speed": 40.0}), model="closed-form")
+        webfem.solve(flying, model="closed-form")
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         r = webfem.solve(Case().updated({"roller.speed": 40.0,     # inside every range

@@ -62,13 +62,12 @@ def test_cli_traction_loss_json(capsys):
     assert out["model"] == "closed-form" and 20.0 < out["speed"] < 35.0
 
 
-def test_viscous_shear_vanishes_without_sliding():
+def test_viscous_shear_vanishes_without_sliding(idler):
     """An idler at web speed: U = 2 U_w still entrains air, but U_s = 0 leaves no Couette
     shear: with the paper's friction no film friction at all; with the friction from the
     loads only the pressure-driven shear -(h/2) dp/dx remains (none in the closed form,
     whose gap carries no pressure)."""
-    idler = webfem.load_case("cases/idler.toml").updated({"roller.speed": 20.0,
-                                                           "web.speed": 20.0})
+    idler = idler.updated({"roller.speed": 20.0, "web.speed": 20.0})
     for model in ("closed-form", "fe1d"):
         r = webfem.solve(idler.updated({"friction.variant": "paper"}), model=model)
         assert r["U_slide"] == 0.0 and r["U"] == 40.0

@@ -8,16 +8,14 @@ import numpy as np
 import pytest
 
 import webfem
-from webfem import Case
-from webfem.case import load_case
 from webfem.api import solve_along
 from webfem.errors import ConvergenceError, InputError, ValidityWarning
 
+from conftest import BASE, GROOVED, PAPER
+
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
-BASE = Case()
 #: The paper's model, in which the issue's branch-jumping cases were found.
-PAPER = Case().updated({"model.physics": "paper"})
 
 
 def _outcome(change, model):
@@ -234,7 +232,7 @@ def test_the_practical_grooved_roller_answers(speed):
     """Pitch 1.27 mm, grooves 0.25 mm wide and deep, the base web: it exited 3 at 40 m/s on
     another machine ("groove depth continuation failed at 0.938 x the groove depth") where a
     finer mesh converges; the driver now tries finer meshes after a failed solve too."""
-    r = webfem.solve(load_case("cases/base_grooved.toml").updated({"roller.speed": speed}))
+    r = webfem.solve(GROOVED.updated({"roller.speed": speed}))
     assert r["converged"] and r["model_used"] == "fe2d" and r["h_min"] > 0.0
     assert r["error_h_min"] <= 1e-3
 
