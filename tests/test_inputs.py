@@ -295,3 +295,15 @@ def test_case_error_is_only_an_old_name_for_input_error():
             if isinstance(node, ast.Name) and node.id == "CaseError"
             and isinstance(node.ctx, ast.Load)]
     assert not uses, f"CaseError used in {uses}"
+
+
+def test_sweeps_are_where_users_are_told():
+    """``webfem.Sweep`` and ``webfem.load_sweep`` (README, examples) are webfem.sweepspec's;
+    webfem.case no longer loads them (the two modules imported each other), and says where
+    they are."""
+    import webfem.case
+    import webfem.sweepspec
+    assert webfem.Sweep is webfem.sweepspec.Sweep
+    assert webfem.load_sweep is webfem.sweepspec.load_sweep
+    with pytest.raises(AttributeError, match="webfem.case.Sweep is webfem.sweepspec.Sweep"):
+        webfem.case.Sweep

@@ -61,8 +61,8 @@ def __getattr__(name: str):
     # Sweeps are built on cases (webfem.sweepspec imports this module): loading them from
     # here would make the two modules import each other, so the error says where they are.
     if name in _MOVED:
-        raise AttributeError(f"webfem.case.{name} is webfem.sweepspec.{name} (or webfem."
-                             f"{name} for Sweep and load_sweep)")
+        also = f"; webfem.{name} works too" if name in ("Sweep", "load_sweep") else ""
+        raise AttributeError(f"webfem.case.{name} is webfem.sweepspec.{name}{also}")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
