@@ -146,7 +146,9 @@ class Section(Validated):
         if meta["kind"] == "float":
             if not _PHYSICAL.get() and "sign" in meta:   # the equations' own bounds
                 meta = {**meta, **meta["sign"]}
-            if isinstance(value, str):   # pint is imported only when text is read
+            if type(value) is float:   # the common case: nothing to read
+                pass
+            elif isinstance(value, str):   # pint is imported only when text is read
                 value = to_si(cls.label(name), value, meta["unit"])
             elif isinstance(value, numbers.Real) and not isinstance(value, bool):
                 try:   # a key is a float: messages show it as one (-1.0, not -1)

@@ -166,14 +166,17 @@ class Validated:
     @classmethod
     def number(cls, name: str, value: Any, meta: Mapping[str, Any]) -> float | int:
         """``value`` as a float (an int for kind ``"int"``) inside the interval."""
-        if value is None:
+        if type(value) is float:   # the common case, without the slower ABC checks below
+            number = value
+        elif value is None:
             raise cls.invalid(name, value, "is not valid", meta)
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        elif isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
             raise cls.invalid(name, value, "is not a number", meta)
-        try:
-            number = float(value)
-        except OverflowError:   # an integer beyond float range (TOML allows 10**400)
-            raise cls.invalid(name, value, "is out of range", meta) from None
+        else:
+            try:
+                number = float(value)
+            except OverflowError:   # an integer beyond float range (TOML allows 10**400)
+                raise cls.invalid(name, value, "is out of range", meta) from None
         if meta["kind"] == "int" and math.isfinite(number):
             if number != int(number):
                 raise cls.invalid(name, value, "is not an integer", meta)
