@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from webfem import Case
-from webfem.case import Sweep
+from webfem.sweepspec import Sweep
 from webfem.sweeps import run
 
 WAYS = (("serial", {}),

@@ -5,8 +5,9 @@ import pytest
 
 import webfem
 from webfem import Case
-from webfem.case import load_case
 from webfem.models.readout import READ_QUANTITIES, error_scale
+
+from conftest import PET_IDLER
 
 # the cases include landed webs and Eq. 21's range edges: the warnings are expected here
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
@@ -69,7 +70,7 @@ def test_choices_differ_where_they_should():
 def test_an_idler_never_gets_eq21_gaps():
     """auto used to judge mu alone; mu is about 0 for every model of an idler, so it chose
     the closed form and stated 0 error on gaps 64 % off."""
-    case = load_case("cases/pet_idler.toml").updated(PET_POINT)
+    case = PET_IDLER.updated(PET_POINT)
     auto = webfem.solve(case)
     fe2d = webfem.solve(case, model="fe2d")
     assert auto["model_used"] == "fe2d"
@@ -90,7 +91,7 @@ def test_auto_through_the_cli(capsys):
 
 
 def test_bad_auto_options():
-    with pytest.raises(webfem.CaseError, match="quantity"):
+    with pytest.raises(webfem.InputError, match="quantity"):
         webfem.solve(Case(), model="auto", quantity="torque")
-    with pytest.raises(webfem.CaseError, match="tol"):
+    with pytest.raises(webfem.InputError, match="tol"):
         webfem.solve(Case(), model="auto", tol=2.0)

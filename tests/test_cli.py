@@ -187,13 +187,13 @@ def test_mesh_files_follow_the_options(tmp_path, capsys):
     assert not [p for p in tmp_path.rglob(".*")]   # no temporary files left
 
 
-def test_json_is_strict_when_numbers_are_not_finite(monkeypatch, capsys):
+def test_json_is_strict_when_numbers_are_not_finite(flying, monkeypatch, capsys):
     """A summary holding NaN and infinity prints as null, never as NaN or Infinity."""
     import dataclasses
 
     import webfem.cli.solve as solve_cmd
 
-    real = webfem.solve(webfem.Case().updated({"roller.speed": 40.0}))
+    real = webfem.solve(flying)
     broken = dataclasses.replace(real, summary=real.summary.replace(mu=float("nan"),
                                                                     delta_T=float("inf")))
     monkeypatch.setattr(solve_cmd, "solve", lambda *a, **k: broken)

@@ -10,7 +10,7 @@ from webfem.models.closed import case_arrays, evaluate
 from webfem.physics import closed_form as cf
 
 
-def test_eq21_base_case_at_40_m_s():
+def test_eq21_base_case_at_40_m_s(flying):
     """Base case at U_r = 40 m/s, by hand (physics.md quotes 33 um inlet, 17 um exit):
 
     eps = 6 * 1.81e-5 * 40 / 80 = 5.43e-5; eps^(1/3) = 0.037867; R eps^(2/3) = 78.87 um
@@ -20,7 +20,7 @@ def test_eq21_base_case_at_40_m_s():
     kappa = 5e-15 * 80 * (pi/3) / (1.81e-5 * 70e-6 * 0.055 * 40) = 1.5030e-4; R kappa = 8.267 um
     h_center = 25.01 um, h_outlet = 16.74 um
     """
-    r = solve(Case().updated({"roller.speed": 40.0}), model="closed-form")
+    r = solve(flying, model="closed-form")
     assert r["lambda"] == pytest.approx(8.4025, rel=1e-4)
     assert r["h_inlet"] == pytest.approx(33.27e-6, rel=1e-3)
     assert r["h_center"] == pytest.approx(25.01e-6, rel=1e-3)

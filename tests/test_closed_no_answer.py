@@ -20,7 +20,7 @@ from webfem.sweeps.table import read_table, typed
 
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
-BASE = Case()
+from conftest import BASE
 
 
 def code(case: Case) -> str:

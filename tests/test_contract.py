@@ -8,7 +8,6 @@ held to it without a new test.
 import json
 import math
 import pickle
-from pathlib import Path
 
 import pytest
 
@@ -17,10 +16,11 @@ from webfem.errors import InputError
 from webfem.models.registry import MODELS
 from webfem.result import SUMMARY_KEYS
 
+from conftest import FLYING
+
 #: The base case at 40 m/s, where the web flies (fluid film everywhere): every model answers
 #: in about a second.
-CASE = webfem.load_case(Path(__file__).resolve().parents[1] / "cases" / "base.toml").updated(
-    {"roller.speed": 40.0})
+CASE = FLYING
 NAMES = sorted(MODELS)
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 

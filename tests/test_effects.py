@@ -17,6 +17,8 @@ from webfem.fem.scaling import FoilParameters
 from webfem.models import fe1d, fe2d
 from webfem.physics.effects import EFFECTS, SWITCH_OFF, idler_check, included
 
+from conftest import FLYING
+
 MODELS = [fe1d, fe2d]
 KEYS = ("h_center", "h_min", "h_inlet", "h_outlet", "mu", "delta_T")
 
@@ -80,20 +82,20 @@ def test_web_too_fast_to_hold_is_an_input_error():
 # -- slip flow -----------------------------------------------------------------------------
 
 #: Impermeable flying web: the fluid film everywhere, the gap shift from slip is clean.
-FLYING = Case().updated({"roller.speed": 40.0, "web.permeability": 0.0})
+IMPERMEABLE = FLYING.updated({"web.permeability": 0.0})
 
 
 @pytest.fixture(scope="module", params=MODELS, ids=lambda m: m.NAME)
 def no_slip(request):
     model = request.param
-    return model, model.solve(FLYING.updated({"air.slip": "none"}))
+    return model, model.solve(IMPERMEABLE.updated({"air.slip": "none"}))
 
 
 def test_vanishing_mean_free_path_is_no_slip(no_slip):
     """lambda_a -> 0 (1e-15 m) removes the slip terms: the gaps and mu equal air.slip =
     "none" to 1e-9 (the slip terms are O(lambda_a / h) = 3e-11; measured < 1e-10)."""
     model, none = no_slip
-    tiny = model.solve(FLYING.updated({"air.mean_free_path": 1e-15}))
+    tiny = model.solve(IMPERMEABLE.updated({"air.mean_free_path": 1e-15}))
     assert "slip" in tiny["effects"] and "slip" not in none["effects"]
     for key in ("h_center", "h_min", "mu"):
         assert rel(tiny[key], none[key]) < 1e-9, (key, tiny[key], none[key])
@@ -114,13 +116,13 @@ def test_slip_shifts_the_gap_by_two_mean_free_paths(no_slip):
     Linear in lambda_a: the two shifts per lambda_a agree within 0.1 %.
     """
     model, none = no_slip
-    p_a = FLYING.air.ambient_pressure
+    p_a = IMPERMEABLE.air.ambient_pressure
     f = none.fields
     p_centre = np.interp(0.0, f["x"], f["p"])
     p_min = np.interp(none["x_min"], f["x"], f["p"])
     shifts = []
     for lam in (5e-9, 1e-9):
-        r = model.solve(FLYING.updated({"air.mean_free_path": lam}))
+        r = model.solve(IMPERMEABLE.updated({"air.mean_free_path": lam}))
         centre = (r["h_center"] - none["h_center"]) / lam
         low = (r["h_min"] - none["h_min"]) / lam
         assert centre == pytest.approx(-2.0, abs=0.03), centre
@@ -166,8 +168,8 @@ def test_isothermal_and_paper_permeation_differ_at_first_order_in_d():
 
 def test_impermeable_web_has_no_permeation_effect():
     """k = 0: no sink, so the permeation law cannot matter (bit for bit) and is not listed."""
-    a = fe1d.solve(FLYING)
-    b = fe1d.solve(FLYING.updated({"web.permeation": "paper"}))
+    a = fe1d.solve(IMPERMEABLE)
+    b = fe1d.solve(IMPERMEABLE.updated({"web.permeation": "paper"}))
     assert "isothermal-permeation" not in a["effects"]
     assert a["h_min"] == b["h_min"] and a["mu"] == b["mu"]
 
@@ -227,7 +229,7 @@ def test_paper_switch_is_every_effect_switched_off():
 
 #: A flying, impermeable web on a smooth pair (sigma = 0.51 um against h > 25 um: the contact
 #: pressure is below 1e-20 T/R) without slip: the film's shear is all the friction.
-SMOOTH = FLYING.updated({"air.slip": "none", "web.roughness": 0.5e-6,
+SMOOTH = IMPERMEABLE.updated({"air.slip": "none", "web.roughness": 0.5e-6,
                          "roller.roughness": 0.1e-6})
 
 
@@ -304,4 +306,4 @@ def test_no_drag_no_idler_check():
     out = idler_check(Case(), 0.3)
     assert out == dict(delta_T_required=None, delta_T_available=None, slip_margin=None,
                        mu_onset=None)
-    assert fe1d.solve(FLYING)["slip_margin"] is None
+    assert fe1d.solve(IMPERMEABLE)["slip_margin"] is None

@@ -13,10 +13,10 @@ from webfem.physics.effects import SWITCH_OFF
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
 
-def test_effects_table_switches_each_effect_off():
+def test_effects_table_switches_each_effect_off(idler):
     """One row per effect the case includes; each row is the case solved with that effect's
     key switched off (checked against a direct solve)."""
-    case = webfem.load_case("cases/idler.toml")
+    case = idler
     table = effects_table(case, "fe1d")
     assert [r.effect for r in table.rows] == ["all included", "inertia", "bending", "slip",
                                               "isothermal-permeation", "load-friction"]
@@ -40,10 +40,10 @@ def test_effects_cli_prints_the_table(capsys):
     assert data["not_carried"] == ["bending", "slip", "isothermal-permeation"]
 
 
-def test_idler_margin_falls_with_line_speed(tmp_path, capsys):
+def test_idler_margin_falls_with_line_speed(idler, tmp_path, capsys):
     """The idler of cases/idler.toml holds at 5 m/s and slips at 15 m/s: the film lifts the
     web off its asperities and mu_onset = mu_cc x contact share falls."""
-    curve = margin_curve(webfem.load_case("cases/idler.toml"), [5.0, 10.0, 15.0], "fe1d")
+    curve = margin_curve(idler, [5.0, 10.0, 15.0], "fe1d")
     assert curve.slip_margin[0] > 1.0 > curve.slip_margin[-1]
     assert 5.0 < curve.slip_speed() < 15.0
     assert main(["idler", "cases/idler.toml", "--model", "closed-form", "--num", "5",

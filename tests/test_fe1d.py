@@ -22,6 +22,7 @@ from webfem.models.refine import minimum
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.options import FE1DOptions
 
+from conftest import FLYING
 from orders import GAP_1D
 
 DEFAULTS = FE1DOptions()
@@ -99,7 +100,6 @@ def test_compressibility_shift():
     assert (H_comp / H_inc - 1) / d == pytest.approx(-0.45, abs=0.02)
 
 
-FLYING = Case().updated({"roller.speed": 40.0})   # base case at 40 m/s: fluid film everywhere
 
 
 def test_permeable_gap_slope():
@@ -201,9 +201,9 @@ def test_failure_raises_with_history():
 
 
 def test_bad_option_is_rejected():
-    with pytest.raises(webfem.CaseError, match="method"):
+    with pytest.raises(webfem.InputError, match="method"):
         fe1d.solve(FLYING, method="secant")
-    with pytest.raises(webfem.CaseError, match="unknown fe1d option"):
+    with pytest.raises(webfem.InputError, match="unknown fe1d option"):
         fe1d.solve(FLYING, levle=2)
 
 
@@ -223,7 +223,7 @@ def test_sweep_continuation(tmp_path):
     spec = webfem.load_sweep(p)
     out = list(webfem.sweep(spec, model="fe1d"))
     assert all(r["converged"] for _, _, r in out)
-    cold = fe1d.solve(Case().updated({"roller.speed": 40.0}))
+    cold = fe1d.solve(FLYING)
     assert out[-1][2]["iterations"] < cold["iterations"]
     assert out[-1][2]["h_center"] == pytest.approx(cold["h_center"], rel=1e-6)
 

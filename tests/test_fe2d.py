@@ -6,7 +6,6 @@ import meshio
 import numpy as np
 import pytest
 
-from webfem import Case
 from webfem.cli import main
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
@@ -18,6 +17,7 @@ from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
 from webfem.models.options import FE2DOptions
 
+from conftest import FLYING as FAST
 from orders import GAP_2D
 
 EE = FoilParameters(beta=30.0, K=0.0, d=0.0, Dn=0.0, c=0.0, S=1.0, contact=0.0, floor=1e-3)
@@ -79,7 +79,6 @@ def test_convergence_order(order):
     assert central_gaps(order) == GAP_2D[order].approx()
 
 
-FAST = Case().updated({"roller.speed": 40.0})
 
 
 @pytest.fixture(scope="module")

@@ -39,13 +39,14 @@ import numpy as np
 import pytest
 from skfem import Basis
 
-from webfem.case import load_case
 from webfem.fem import forms
 from webfem.fem.forms import FILM, SINK, film_coefficients
 from webfem.fem.weakform import skfem_forms
 from webfem.fem.scaling import FoilParameters
 from webfem.models import fe2d
 from webfem.models.options import FE2DOptions
+
+from conftest import GROOVED
 
 #: Share of q_lands the finer quadrature may move the balance (see the module notes).
 QUADRATURE_TOL = 1e-4
@@ -101,7 +102,7 @@ def solved(request):
     the periodic cell of the 35 mm web; (problem, state, prm, options) on the default mesh
     and one level finer."""
     domain, width = request.param
-    case = load_case("cases/base_grooved.toml").updated({"web.width": width})
+    case = GROOVED.updated({"web.width": width})
     out = []
     for level in (0, 1):
         opts = FE2DOptions().replace(grooves=domain, level=level)

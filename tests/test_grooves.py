@@ -116,8 +116,8 @@ def test_shallow_cell_is_the_infinitely_wide_web(line):
     assert H2 == pytest.approx(H1, rel=1e-6)
 
 
-def test_zero_width_case_is_the_smooth_case():
-    c = Case().updated({"roller.speed": 40.0})
+def test_zero_width_case_is_the_smooth_case(flying):
+    c = flying
     g = c.updated({"roller.groove_pitch": 1.27e-3, "roller.groove_depth": 0.25e-3})
     a, b = fe2d.solve(c), fe2d.solve(g)
     assert b["h_center"] == pytest.approx(a["h_center"], rel=1e-9)
@@ -200,12 +200,22 @@ def test_auto_domain_and_summary():
 @pytest.mark.slow
 def test_cell_and_full_width_agree_on_a_wide_web():
     """A web 16 pitches wide: the full width (edge lands included) and the periodic cell
-    differ by the edges' share, within 2 pitch / width."""
+    differ only by what the web's edges do. The gaps are read 8 pitches in from either
+    edge, where the edges' side leakage has died out (lambda = 9.7 entry lengths per half
+    width): measured 0.11 % in h_center and 0.74 % in h_min (the stated mesh errors are
+    1e-5), held to 0.5 % and 2 %. The width averages mu and the contact share differ by
+    what the edge pitches, 2 pitch / width = 12.5 % of the width, carry differently:
+    measured 0.48 % and 0.25 %, held to 2 %, well inside the 12.5 % bound the cell's summary
+    states (its groove_domain text)."""
     c = Case().updated({"roller.groove_pitch": 2e-3, "roller.groove_width": 0.5e-3,
                         "roller.groove_depth": 0.25e-3, "web.width": 0.032})
     cell = fe2d.solve(c, grooves="cell")
     full = fe2d.solve(c, grooves="full")
-    assert full["h_center"] == pytest.approx(cell["h_center"], rel=2 * 2e-3 / 0.032)
+    assert full["h_center"] == pytest.approx(cell["h_center"], rel=5e-3)
+    assert full["h_min"] == pytest.approx(cell["h_min"], rel=2e-2)
+    for key in ("mu", "contact_share"):
+        assert full[key] == pytest.approx(cell[key], rel=2e-2), key
+    assert "12 % of the width, a bound on the error" in cell["groove_domain"]
 
 
 # -- the bundled case ------------------------------------------------------------------------

@@ -17,7 +17,7 @@ from webfem.cli import main
 
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
-IDLER = webfem.load_case("cases/idler.toml")
+from conftest import IDLER
 
 
 def check_onset(r):

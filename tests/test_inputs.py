@@ -6,18 +6,18 @@ import warnings
 import pytest
 
 import webfem
-from webfem import Case, CaseError
-from webfem.case import Sweep, load_sweep
+from webfem import Case
+from webfem.sweepspec import Sweep, load_sweep
 from webfem.cli import main
 from webfem.errors import InputError, ValidityWarning
 
 
 def test_mesh_file_missing_or_not_a_mesh(tmp_path):
-    with pytest.raises(CaseError, match="mesh file '.*nothere.vtu' does not exist"):
+    with pytest.raises(InputError, match="mesh file '.*nothere.vtu' does not exist"):
         webfem.solve(Case(), model="fe1d", mesh=tmp_path / "nothere.vtu")
     bad = tmp_path / "bad.vtu"
     bad.write_text("this is not a mesh")
-    with pytest.raises(CaseError, match="is not a mesh meshio can read"):
+    with pytest.raises(InputError, match="is not a mesh meshio can read"):
         webfem.solve(Case(), model="fe1d", mesh=bad)
 
 
@@ -36,19 +36,19 @@ def test_mesh_not_covering_the_wrap(tmp_path):
     meshio.write(tmp_path / "short.vtu", meshio.Mesh(
         np.column_stack([x, 0 * x, 0 * x]), [("line", np.column_stack([np.arange(19),
                                                                         np.arange(1, 20)]))]))
-    with pytest.raises(CaseError, match="does not cover the wrap"):
+    with pytest.raises(InputError, match="does not cover the wrap"):
         webfem.solve(Case(), model="fe1d", mesh=tmp_path / "short.vtu")
 
 
-def test_validity_warnings():
+def test_validity_warnings(flying):
     with pytest.warns(ValidityWarning, match="outside Eq. 21"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.width": 0.02}),
+        webfem.solve(flying.updated({"web.width": 0.02}),
                      model="closed-form")
     with pytest.warns(ValidityWarning, match="incompressible film"):
-        webfem.solve(Case().updated({"roller.speed": 40.0, "web.tension": 150.0}),
+        webfem.solve(flying.updated({"web.tension": 150.0}),
                      model="fe1d", compressible=False)
     with pytest.warns(ValidityWarning, match="closed form leaves out bending"):
-        webfem.solve(Case().updated({"roller.speed": 40.0}), model="closed-form")
+        webfem.solve(flying, model="closed-form")
     with warnings.catch_warnings():
         warnings.simplefilter("error", ValidityWarning)
         r = webfem.solve(Case().updated({"roller.speed": 40.0,     # inside every range
@@ -275,3 +275,35 @@ def test_cli_set_a_section_and_opt_of_another_model(capsys):
     assert main(["solve", "cases/base.toml", "--model", "fe1d", "--opt", "symmetry=false"]) == 2
     err = capsys.readouterr().err
     assert "an option of fe2d and auto, not of fe1d" in err and "did you mean" not in err
+
+
+def test_case_error_is_only_an_old_name_for_input_error():
+    """``CaseError`` stays importable for users' scripts (webfem, webfem.case,
+    webfem.errors) as the very class ``InputError``; webfem itself raises, catches and
+    names ``InputError`` only (issue 21)."""
+    import ast
+    from pathlib import Path
+
+    import webfem.case
+    import webfem.errors
+    assert webfem.CaseError is webfem.case.CaseError is webfem.errors.CaseError is InputError
+    package = Path(webfem.__file__).parent
+    # re-exports are imports, not uses: only the alias's own line stores the name
+    uses = [f"{path.relative_to(package)}:{node.lineno}"
+            for path in sorted(package.rglob("*.py"))
+            for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+            if isinstance(node, ast.Name) and node.id == "CaseError"
+            and isinstance(node.ctx, ast.Load)]
+    assert not uses, f"CaseError used in {uses}"
+
+
+def test_sweeps_are_where_users_are_told():
+    """``webfem.Sweep`` and ``webfem.load_sweep`` (README, examples) are webfem.sweepspec's;
+    webfem.case no longer loads them (the two modules imported each other), and says where
+    they are."""
+    import webfem.case
+    import webfem.sweepspec
+    assert webfem.Sweep is webfem.sweepspec.Sweep
+    assert webfem.load_sweep is webfem.sweepspec.load_sweep
+    with pytest.raises(AttributeError, match="webfem.case.Sweep is webfem.sweepspec.Sweep"):
+        webfem.case.Sweep

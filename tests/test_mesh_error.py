@@ -8,8 +8,9 @@ import pytest
 
 import webfem
 from webfem import Case
-from webfem.case import load_case
 from webfem.models.readout import READ_QUANTITIES, error_scale
+
+from conftest import BASE, FLYING, GROOVED, PET_IDLER_GROOVED
 
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
@@ -22,13 +23,11 @@ SHALLOW_GROOVES = {"roller.groove_depth": 0.2e-3, "roller.groove_pitch": 3e-3,
                    "roller.speed": 20.0, "web.speed": 20.0}
 
 CASES = {
-    "base fe1d": (Case(), "fe1d"),
-    "base fe2d": (Case(), "fe2d"),
-    "grooved base": (load_case("cases/base_grooved.toml"), "fe2d"),
-    "grooved PET, deep": (load_case("cases/pet_idler_grooved.toml").updated(PET_GROOVED),
-                          "fe2d"),
-    "grooved PET, shallow": (load_case("cases/pet_idler_grooved.toml").updated(
-        SHALLOW_GROOVES), "fe2d"),
+    "base fe1d": (BASE, "fe1d"),
+    "base fe2d": (BASE, "fe2d"),
+    "grooved base": (GROOVED, "fe2d"),
+    "grooved PET, deep": (PET_IDLER_GROOVED.updated(PET_GROOVED), "fe2d"),
+    "grooved PET, shallow": (PET_IDLER_GROOVED.updated(SHALLOW_GROOVES), "fe2d"),
 }
 SLOW = {"base fe2d", "grooved PET, shallow"}
 
@@ -57,7 +56,7 @@ def test_the_stated_error_bounds_the_true_error(name):
 def test_the_estimate_refines_where_the_start_mesh_is_coarse():
     """The grooved PET film's exit constriction: the starting mesh states an h_min error
     above the target, so every cell is bisected until the estimates meet it."""
-    case = load_case("cases/pet_idler_grooved.toml").updated(PET_GROOVED)
+    case = PET_IDLER_GROOVED.updated(PET_GROOVED)
     coarse = webfem.solve(case, model="fe2d", error_tol=0.5)
     fine = webfem.solve(case, model="fe2d")
     assert coarse["error_h_min"] > 1e-3           # 1.1 % off on the starting mesh
@@ -76,7 +75,7 @@ def test_without_estimate_the_keys_are_null_and_nothing_is_refined():
 def test_every_model_states_its_errors():
     """Through the same keys; fe1d's include the edge leakage it leaves out, so they are
     far above its mesh error on the base case (lambda = 13)."""
-    base = Case().updated({"roller.speed": 40.0})
+    base = FLYING
     for model in ("closed-form", "fe1d", "fe2d", "auto"):
         r = webfem.solve(base, model=model)
         assert all(isinstance(r[f"error_{q}"], float) for q in READ_QUANTITIES), model

@@ -121,8 +121,8 @@ def test_fe1d_gap_grows_with_speed_where_the_web_flies(speed, factor):
     assert fast["h_center"] > slow["h_center"] and fast["h_min"] > slow["h_min"]
 
 
-def test_fe2d_full_width_is_symmetric_in_z():
-    r = fe2d.solve(Case().updated({"roller.speed": 40.0}), symmetry=False)
+def test_fe2d_full_width_is_symmetric_in_z(flying):
+    r = fe2d.solve(flying, symmetry=False)
     pts, p = r.film["points"], r.film["p_rel"]
     order = np.lexsort((pts[:, 1], pts[:, 0]))
     mirror = np.lexsort((-pts[:, 1], pts[:, 0]))

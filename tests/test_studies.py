@@ -13,17 +13,17 @@ from webfem.io import studies as study_io
 from webfem.studies import convergence, lambda_table, pareto, stability, variants
 from webfem.studies.report import StudiesReport
 
-CASE = Case().updated({"roller.speed": 40.0})
+from conftest import FLYING
 
 
 @pytest.fixture(scope="module")
 def conv():
-    return convergence.run(CASE, quick=True)
+    return convergence.run(FLYING, quick=True)
 
 
 @pytest.fixture(scope="module")
 def par():
-    return pareto.run(CASE, quick=True, repeats=1)
+    return pareto.run(FLYING, quick=True, repeats=1)
 
 
 @pytest.fixture(scope="module")

@@ -17,7 +17,7 @@ import pytest
 
 import webfem
 from webfem import Case, load_sweep
-from webfem.case import Sweep
+from webfem.sweepspec import Sweep
 from webfem.errors import InputError
 from webfem.io.vtu import SweepVtu, read_field_data
 from webfem.models import registry

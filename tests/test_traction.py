@@ -62,13 +62,12 @@ def test_cli_traction_loss_json(capsys):
     assert out["model"] == "closed-form" and 20.0 < out["speed"] < 35.0
 
 
-def test_viscous_shear_vanishes_without_sliding():
+def test_viscous_shear_vanishes_without_sliding(idler):
     """An idler at web speed: U = 2 U_w still entrains air, but U_s = 0 leaves no Couette
     shear: with the paper's friction no film friction at all; with the friction from the
     loads only the pressure-driven shear -(h/2) dp/dx remains (none in the closed form,
     whose gap carries no pressure)."""
-    idler = webfem.load_case("cases/idler.toml").updated({"roller.speed": 20.0,
-                                                           "web.speed": 20.0})
+    idler = idler.updated({"roller.speed": 20.0, "web.speed": 20.0})
     for model in ("closed-form", "fe1d"):
         r = webfem.solve(idler.updated({"friction.variant": "paper"}), model=model)
         assert r["U_slide"] == 0.0 and r["U"] == 40.0
@@ -98,13 +97,29 @@ def synthetic(case, speeds, tensions, mu_cc, C, noise, seed=3, model="closed-for
     return rows
 
 
+def noise_rms(rows, case, mu_cc, C, model="closed-form") -> float:
+    """The RMS of the noise :func:`synthetic` added: the rows against the true constants."""
+    truth = case.updated({"friction.mu_cc": mu_cc, "friction.speed_constant": C})
+    return float(np.sqrt(np.mean([
+        (r["delta_T"] - webfem.solve(truth.updated({"roller.speed": r["roller.speed"],
+                                                    "web.tension": r["web.tension"]}),
+                                     model=model)["delta_T"]) ** 2 for r in rows])))
+
+
 def test_calibration_recovers_constants_closed_form():
     rows = synthetic(Case(), np.geomspace(0.3, 30, 12), (40.0, 80.0, 120.0), 0.36, 0.7, 0.3)
     fit = calibrate(rows, Case(), model="closed-form")   # starts from the paper's 0.3 and 0.4
     for name, true in (("mu_cc", 0.36), ("speed_constant", 0.7)):
         assert abs(fit["estimates"][name] - true) <= fit["ci95"][name], (name, fit)
         assert fit["ci95"][name] < 0.1 * true
-    assert fit["rms"] == pytest.approx(0.3, rel=0.3)
+    # The fit's residual RMS against the noise actually drawn (0.321 N/m for this seed, where
+    # 0.3 was asked: an RMS of 36 draws scatters by 1/sqrt(72) = 12 %, so a band around 0.3
+    # would have to be +-30 %). Least squares can only end below the true constants' RMS;
+    # the two fitted constants take a share of the squares distributed (linearised) as
+    # Beta(1, 17) (2 of 36 directions, mean 5.6 %), under 1/3 but for one draw in 1000, so
+    # the RMS stays above sqrt(2/3) = 0.816 of the noise's. Measured: 0.3015, 0.94 of it.
+    noise = noise_rms(rows, Case(), 0.36, 0.7)
+    assert 0.81 * noise <= fit["rms"] <= noise, (fit["rms"], noise)
 
 
 def test_calibration_recovers_constants_fe1d():

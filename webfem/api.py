@@ -1,5 +1,5 @@
 """The public entry points: :func:`solve` one case, :func:`solve_along` a path of cases with
-continuation, :func:`sweep` a :class:`webfem.case.Sweep`.
+continuation, :func:`sweep` a :class:`webfem.sweepspec.Sweep`.
 
 Models and their options come from :data:`webfem.models.registry.MODELS`; ``model="auto"``,
 the default everywhere, picks the cheapest model whose stated errors meet its tolerance. A
@@ -112,7 +112,7 @@ def sweep(spec: Sweep | str | os.PathLike, model: str = "auto",
           **values) -> Iterator[tuple[str, float, Result]]:
     """Yield ``(series_label, value, result)`` over a sweep, in memory.
 
-    ``spec``: a :class:`~webfem.case.Sweep`, or a case file or bundled case's name with a
+    ``spec``: a :class:`~webfem.sweepspec.Sweep`, or a case file or bundled case's name with a
     ``[sweep]`` table.
 
     The closed form is evaluated for all points at once; FE models walk each series with

@@ -1,11 +1,11 @@
 """Case description: one web on one roller, in SI units, validated on creation.
 
-A :class:`Case` groups five frozen sections that mirror the TOML tables
-``[roller]``, ``[web]``, ``[wrap]``, ``[air]`` and ``[friction]``. Defaults are
-the paper's newsprint on its base rig (Hashimoto, Tables 1 and 2; base case of
-Figs. 10-13 at 20 m/s). The sections are defined in :mod:`webfem.sections`, sweeps
-(:class:`Sweep`, :func:`load_sweep`) in :mod:`webfem.sweepspec`; both are importable
-from here. Case files are read strictly: a file that is missing, a directory, not UTF-8
+A :class:`Case` groups six frozen sections that mirror the TOML tables ``[roller]``,
+``[web]``, ``[wrap]``, ``[air]``, ``[friction]`` and ``[model]``. Defaults are the paper's
+newsprint on its base rig (Hashimoto, Tables 1 and 2; base case of Figs. 10-13 at 20 m/s).
+The sections are defined in :mod:`webfem.sections` and importable from here; sweeps
+(``Sweep``, ``load_sweep``) are in :mod:`webfem.sweepspec` and importable from
+:mod:`webfem`. Case files are read strictly: a file that is missing, a directory, not UTF-8
 or not TOML, an unknown key or a value out of range is an :class:`InputError` naming it.
 Numbers are in SI units; any numeric key also takes text with a unit (``speed = "1200
 m/min"``, ``tension = "0.5 pli"``, read by :mod:`webfem.units`), and ``roller.diameter``
@@ -31,11 +31,11 @@ import sys
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import Any, Mapping
 
-from .errors import CaseError, InputError  # CaseError: InputError's old name
-from .sections import (_KEYS, _SECTIONS, ALIASES, Air, Friction, Model, Roller, Web, Wrap,
-                       _flatten, _is_key, _show, _unknown, resolve_aliases, valid_keys)
+from .errors import CaseError, InputError, show  # CaseError: InputError's old name, for users
+from .keys import flatten, is_key, unknown_key, valid_keys
+from .sections import ALIASES, SECTIONS, Air, Friction, Model, Roller, Web, Wrap, resolve_aliases
 
 __all__ = [
     "Air",
@@ -45,26 +45,24 @@ __all__ = [
     "Friction",
     "Model",
     "Roller",
-    "Sweep",
     "Web",
     "Wrap",
+    "case_from_tables",
     "load_case",
-    "load_sweep",
     "parse_assignment",
+    "read_toml",
     "valid_keys",
 ]
 
-# `Sweep` and `load_sweep` live in webfem.sweepspec (a layer above Case); they stay
-# importable from here, loaded on first use so neither module imports the other at load.
-if TYPE_CHECKING:
-    from .sweepspec import MAX_POINTS, MAX_SERIES, MAX_VALUES, Sweep, load_sweep  # noqa: F401
-_SWEEP_NAMES = ("Sweep", "load_sweep", "MAX_VALUES", "MAX_SERIES", "MAX_POINTS")
+_MOVED = ("Sweep", "load_sweep", "MAX_VALUES", "MAX_SERIES", "MAX_POINTS")
 
 
 def __getattr__(name: str):
-    if name in _SWEEP_NAMES:
-        from . import sweepspec
-        return getattr(sweepspec, name)
+    # Sweeps are built on cases (webfem.sweepspec imports this module): loading them from
+    # here would make the two modules import each other, so the error says where they are.
+    if name in _MOVED:
+        also = f"; webfem.{name} works too" if name in ("Sweep", "load_sweep") else ""
+        raise AttributeError(f"webfem.case.{name} is webfem.sweepspec.{name}{also}")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -90,15 +88,15 @@ class Case:
     model: Model = field(default_factory=Model)
 
     def __post_init__(self):
-        for name, cls in _SECTIONS.items():
+        for name, cls in SECTIONS.items():
             if not isinstance(getattr(self, name), cls):
-                raise CaseError(f"Case.{name} must be a webfem.case.{cls.__name__}")
+                raise InputError(f"Case.{name} must be a webfem.case.{cls.__name__}")
         if self.roller.speed + self.web.speed <= 0.0:
-            raise CaseError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
+            raise InputError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
                             "[m/s] (no air is entrained otherwise)")
         if self.tension_eff <= 0.0:
             w = self.web
-            raise CaseError(
+            raise InputError(
                 f"web.speed = {w.speed:g} m/s: the web cannot be held on the roller at that "
                 f"speed: turning it takes rho_w t U_w^2 = {self.web_inertia:.4g} N/m, at least "
                 f"its tension web.tension = {w.tension:g} N/m (raise the tension above "
@@ -110,7 +108,7 @@ class Case:
     def from_dict(cls, data: Mapping[str, Any], where: str = "") -> "Case":
         """Build from nested tables (as in TOML) or dotted keys; unknown keys are errors."""
         try:
-            return cls().updated(_flatten(data, where))
+            return cls().updated(flatten(data, where))
         except InputError as err:
             if where and where not in str(err):
                 raise InputError(f"{err}{where}") from None
@@ -122,26 +120,26 @@ class Case:
         ``roller.radius``."""
         changed: dict[str, dict[str, Any]] = {}
         for key, value in resolve_aliases(values).items():
-            if not _is_key(key):
-                raise _unknown(key)
+            if not is_key(key):
+                raise unknown_key(key)
             section, name = key.split(".", 1)
             if section not in changed:
                 changed[section] = dataclasses.asdict(getattr(self, section))
             changed[section][name] = value
         # untouched sections are frozen and valid: share them (sweeps build many cases)
-        return dataclasses.replace(self, **{section: _SECTIONS[section](**kw)
+        return dataclasses.replace(self, **{section: SECTIONS[section](**kw)
                                             for section, kw in changed.items()})
 
     def get(self, key: str) -> Any:
         """Value of a dotted key, e.g. ``case.get("web.tension")``."""
-        if not _is_key(key):
-            raise _unknown(key)
+        if not is_key(key):
+            raise unknown_key(key)
         section, name = key.split(".", 1)
         return getattr(getattr(self, section), name)
 
     def to_dict(self) -> dict[str, dict[str, Any]]:
         """Nested tables, the TOML layout."""
-        return {name: dataclasses.asdict(getattr(self, name)) for name in _SECTIONS}
+        return {name: dataclasses.asdict(getattr(self, name)) for name in SECTIONS}
 
     def to_toml(self) -> str:
         """TOML text that :func:`load_case` reads back to an equal case."""
@@ -286,37 +284,46 @@ def _toml_value(value: Any) -> str:
     return str(value)
 
 
-def _read_toml(path: str | Path) -> tuple[dict[str, Any], str]:
-    """The tables of a TOML case file and the ``" in FILE"`` suffix for messages."""
+def read_toml(path: str | Path) -> tuple[dict[str, Any], str]:
+    """The tables of a TOML case file and the ``" in FILE"`` suffix for messages.
+
+    Raises
+    ------
+    InputError
+        Naming the file: missing, a directory, unreadable, not UTF-8 or not TOML.
+    """
     path = Path(path)
     if path.is_dir():
-        raise CaseError(f"case file '{path}' is a directory: give a .toml file")
+        raise InputError(f"case file '{path}' is a directory: give a .toml file")
     if not path.exists():
-        raise CaseError(f"case file '{path}' does not exist")
+        raise InputError(f"case file '{path}' does not exist")
     if not path.is_file():
-        raise CaseError(f"case file '{path}' is not a regular file: give a .toml file")
+        raise InputError(f"case file '{path}' is not a regular file: give a .toml file")
     try:
         raw = path.read_bytes()
     except OSError as err:
-        raise CaseError(f"case file '{path}' cannot be read: {err.strerror or err}") from None
+        raise InputError(f"case file '{path}' cannot be read: {err.strerror or err}") from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
         line = raw[:err.start].count(b"\n") + 1
-        raise CaseError(f"case file '{path}' is not UTF-8 text (byte 0x{raw[err.start]:02x} "
+        raise InputError(f"case file '{path}' is not UTF-8 text (byte 0x{raw[err.start]:02x} "
                         f"on line {line}): save it as UTF-8") from None
     try:
         # a byte-order mark (some Windows editors write one) is not TOML but harmless
         return tomllib.loads(text.removeprefix("\ufeff")), f" in {path}"
     except tomllib.TOMLDecodeError as err:
-        raise CaseError(f"{path}: malformed TOML: {err}") from None
+        raise InputError(f"{path}: malformed TOML: {err}") from None
     except ValueError:  # an integer literal beyond Python's digit limit (4300 digits)
-        raise CaseError(f"{path}: a number is out of range (an integer of more than "
+        raise InputError(f"{path}: a number is out of range (an integer of more than "
                         f"{sys.get_int_max_str_digits()} digits)") from None
 
 
-def _case_from_tables(data: Mapping[str, Any], where: str,
-                      overrides: Mapping[str, Any] | None) -> Case:
+def case_from_tables(data: Mapping[str, Any], where: str,
+                     overrides: Mapping[str, Any] | None = None) -> Case:
+    """The case of a case file's tables (as :func:`read_toml` gives them; ``[sweep]`` and
+    ``[[series]]`` are left to :func:`webfem.sweepspec.load_sweep`), with ``overrides``
+    (dotted keys) applied; ``where`` (" in FILE") ends the messages."""
     tables = {k: v for k, v in data.items() if k not in ("sweep", "series")}
     case = Case.from_dict(tables, where)
     return case.updated(overrides) if overrides else case
@@ -324,7 +331,7 @@ def _case_from_tables(data: Mapping[str, Any], where: str,
 
 def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Case:
     """Read a case TOML file (``[sweep]`` and ``[[series]]`` tables are ignored here)."""
-    return _case_from_tables(*_read_toml(path), overrides)
+    return case_from_tables(*read_toml(path), overrides)
 
 
 def parse_assignment(text: str) -> tuple[str, Any]:
@@ -337,12 +344,12 @@ def parse_assignment(text: str) -> tuple[str, Any]:
     ('roller.speed', '1200 m/min')
     """
     if "=" not in text:
-        raise CaseError(f"--set {_show(text)}: expected section.key=value")
+        raise InputError(f"--set {show(text)}: expected section.key=value")
     key, raw = (s.strip() for s in text.split("=", 1))
-    if key not in _KEYS and key not in ALIASES:
-        raise _unknown(key, " (--set)")
+    if not is_key(key) and key not in ALIASES:
+        raise unknown_key(key, " (--set)")
     if "\n" in raw or "\r" in raw:  # TOML would read the next line as more keys
-        raise CaseError(f"--set {key} = {_show(raw)}: the value must be on one line")
+        raise InputError(f"--set {key} = {show(raw)}: the value must be on one line")
     try:
         value = tomllib.loads(f"v = {raw}")["v"]
     except ValueError:  # not TOML (a bare word), or an integer past the digit limit

@@ -12,9 +12,12 @@
 from __future__ import annotations
 
 import difflib
+import math
+import reprlib
+from typing import Any
 
 __all__ = ["InputError", "CaseError", "NoAdmissibleSolution", "ConvergenceError",
-           "ValidityWarning", "unknown_name"]
+           "ValidityWarning", "show", "unknown_name"]
 
 
 class InputError(ValueError):
@@ -30,6 +33,31 @@ class NoAdmissibleSolution(InputError):
     (e.g. contact cannot carry T/R at any h >= 0) or it lies outside the physics' range
     (a film thicker than R/100, a wrap too long to mesh). In a sweep the point is kept as
     not converged, with this message, and the sweep goes on."""
+
+
+_repr = reprlib.Repr()
+_repr.maxlist = _repr.maxtuple = _repr.maxdict = 6
+_repr.maxstring = _repr.maxother = 60
+
+
+def show(value: Any) -> str:
+    """A value as messages show it: ``repr``, with long lists and strings cut and huge
+    integers as ``1.00e+400`` (a TOML file may hold 10**400; its 401 digits would bury the
+    message).
+
+    >>> show(3.5), show("m/s"), show(10**400), show(list(range(100)))
+    ('3.5', "'m/s'", '1.00e+400', '[0, 1, 2, 3, 4, 5, ...]')
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**20:
+        exp = int(math.log10(abs(value)))
+        lead = abs(value) // 10 ** (exp - 2)
+        if lead >= 1000:  # log10 rounded down across a power of ten
+            exp, lead = exp + 1, lead // 10
+        return f"{'-' if value < 0 else ''}{lead / 100:.2f}e+{exp}"
+    try:
+        return _repr.repr(value)
+    except ValueError:  # an integer beyond Python's digit limit inside a container
+        return f"<{type(value).__name__} holding a number too large to print>"
 
 
 def unknown_name(kind: str, name: str, valid, where: str = "") -> InputError:

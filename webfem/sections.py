@@ -1,8 +1,10 @@
-"""The six sections of a case, validated on creation, and the dotted keys that name them.
+"""The six sections of a case, validated on creation.
 
-Each section is a frozen dataclass whose fields carry their unit and valid interval (or
-their valid words) as metadata; :class:`webfem.case.Case` groups one of each. Import these
-names from :mod:`webfem.case`, which re-exports them.
+Each section is a frozen dataclass (a :class:`Section`, on the base the model options share,
+:class:`webfem.validated.Validated`) whose fields carry their unit and valid interval (or
+their valid words) as metadata; :class:`webfem.case.Case` groups one of each. The dotted
+keys that name the fields (``roller.speed``) are :mod:`webfem.keys`'. Import the sections
+from :mod:`webfem.case`, which re-exports them.
 
 Examples
 --------
@@ -18,42 +20,24 @@ from __future__ import annotations
 import contextlib
 import contextvars
 import dataclasses
-import difflib
 import math
 import numbers
-import reprlib
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from .errors import CaseError
+from .errors import InputError, show, unknown_name
+from .units import examples, to_si
+from .validated import Validated, interval_text, spec
 
-__all__ = ["ALIASES", "Air", "Friction", "Model", "Roller", "Web", "Wrap", "resolve_aliases",
-           "valid_keys"]
-
-_repr = reprlib.Repr()
-_repr.maxlist = _repr.maxtuple = _repr.maxdict = 6
-_repr.maxstring = _repr.maxother = 60
-
-
-def _show(value: Any) -> str:
-    """``repr`` for messages: long lists and strings cut, huge integers as ``1.00e+400``."""
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**20:
-        exp = int(math.log10(abs(value)))
-        lead = abs(value) // 10 ** (exp - 2)
-        if lead >= 1000:  # log10 rounded down across a power of ten
-            exp, lead = exp + 1, lead // 10
-        return f"{'-' if value < 0 else ''}{lead / 100:.2f}e+{exp}"
-    try:
-        return _repr.repr(value)
-    except ValueError:  # an integer beyond Python's digit limit inside a container
-        return f"<{type(value).__name__} holding a number too large to print>"
+__all__ = ["ALIASES", "SECTIONS", "Air", "Friction", "Model", "Roller", "Section", "Web",
+           "Wrap", "physical_ranges", "range_text", "resolve_aliases", "valid_keys"]
 
 
 def _num(unit: str, lo: float | None = None, hi: float | None = None,
          lo_open: bool = True, hi_open: bool = True, doc: str = "", absent: str = "",
          real: tuple[float | None, float | None] = (None, None)):
-    """Field metadata: unit and valid interval; ``absent``, when given, says what the key
-    means when it is left out (its value is then None).
+    """Field metadata of a number: unit and valid interval; ``absent``, when given, says
+    what the key means when it is left out (its value is then None).
 
     ``lo``/``hi`` (None = unbounded) are what the equations need (a positive radius, a
     wrap below 360 deg); ``real`` are closed limits inside them that no real line comes
@@ -68,8 +52,12 @@ def _num(unit: str, lo: float | None = None, hi: float | None = None,
         lo, lo_open = rlo, False
     if rhi is not None and (hi is None or rhi < hi):
         hi, hi_open = rhi, False
-    return {"unit": unit, "lo": lo, "hi": hi, "lo_open": lo_open, "hi_open": hi_open,
-            "doc": doc, "absent": absent, "sign": sign}
+    return spec(doc, "float", lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open, unit=unit,
+                absent=absent, sign=sign)
+
+
+def _choice(*options: str, doc: str = ""):
+    return spec(doc, "choice", choices=options)
 
 
 #: False inside :func:`physical_ranges` (False): only the equations' own bounds are checked.
@@ -81,9 +69,9 @@ _PHYSICAL: contextvars.ContextVar[bool] = contextvars.ContextVar("webfem_physica
 def physical_ranges(on: bool = True):
     """``with physical_ranges(False):`` cases are checked against the equations' bounds only
     (signs, finiteness, a wrap below 360 deg), not the physical ranges of
-    :func:`key_range`. For dimensional-analysis checks, which rescale every key as if the
-    case were given in other units (a modulus times 1e12 is no real web, but the same
-    physics); never for a user's input.
+    :func:`webfem.keys.key_range`. For dimensional-analysis checks, which rescale every key
+    as if the case were given in other units (a modulus times 1e12 is no real web, but the
+    same physics); never for a user's input.
 
     >>> from webfem.sections import Web
     >>> with physical_ranges(False):
@@ -97,80 +85,10 @@ def physical_ranges(on: bool = True):
         _PHYSICAL.reset(token)
 
 
-def _checked_meta(meta: Mapping[str, Any]) -> Mapping[str, Any]:
-    """The interval checked now: the physical one, or the equations' own inside
-    ``physical_ranges(False)``."""
-    if _PHYSICAL.get() or "sign" not in meta:
-        return meta
-    return {**meta, **meta["sign"]}
-
-
-def _choice(*options: str, doc: str = ""):
-    return {"choices": options, "doc": doc}
-
-
-def _range_text(meta: Mapping[str, Any]) -> str:
-    lo, hi = meta["lo"], meta["hi"]
-    parts = []
-    if lo is not None:
-        parts.append(f"{'>' if meta['lo_open'] else '>='} {lo:g}")
-    if hi is not None:
-        parts.append(f"{'<' if meta['hi_open'] else '<='} {hi:g}")
-    return "must be " + " and ".join(parts) if parts else "must be finite"
-
-
-def key_range(key: str) -> str:
-    """The valid range of numeric case key ``key`` (an alias too) as the messages state it,
-    e.g. ``'must be >= 0.001 and <= 10'``; its unit is :func:`key_unit`'s.
-
-    >>> key_range("web.roughness")
-    'must be >= 1e-09 and <= 0.001'
-    """
-    return _range_text(_meta(key))
-
-
-def key_unit(key: str) -> str:
-    """The SI unit of numeric case key ``key`` (``"m"``, ``"-"`` ...)."""
-    return _meta(key)["unit"]
-
-
-def _meta(key: str) -> Mapping[str, Any]:
-    if key in ALIASES:
-        return ALIASES[key][2]
-    if not _is_key(key):
-        raise _unknown(key)
-    section, name = key.split(".", 1)
-    meta = _SECTIONS[section].__dataclass_fields__[name].metadata
-    if "unit" not in meta:
-        raise CaseError(f"{key} takes a word ({', '.join(meta['choices'])}), not a number")
-    return meta
-
-
-def _number(key: str, value: Any, meta: Mapping[str, Any]) -> float:
-    """``value`` of numeric ``key`` as a float in range: a number in the key's SI unit, or
-    text with a unit (``"1200 m/min"``, read by :mod:`webfem.units`)."""
-    meta = _checked_meta(meta)
-    if isinstance(value, str):
-        from .units import to_si   # pint only when text is given: numbers never pay for it
-        value = to_si(key, value, meta["unit"])
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise CaseError(f"{key} = {_show(value)} is not a number: expected a value "
-                        f"in {meta['unit']} ({_range_text(meta)}) or text with a unit")
-    try:
-        value = float(value)
-    except OverflowError:  # an integer beyond float range (TOML allows 10**400)
-        raise CaseError(f"{key} = {_show(value)} is out of range: "
-                        f"{_range_text(meta)} [{meta['unit']}]") from None
-    lo, hi = meta["lo"], meta["hi"]
-    bad = not math.isfinite(value)
-    if lo is not None:
-        bad |= value <= lo if meta["lo_open"] else value < lo
-    if hi is not None:
-        bad |= value >= hi if meta["hi_open"] else value > hi
-    if bad:
-        raise CaseError(f"{key} = {value!r} is out of range: {_range_text(meta)} "
-                        f"[{meta['unit']}]{_si_hint(key, value, meta)}")
-    return value
+def range_text(meta: Mapping[str, Any]) -> str:
+    """The valid range of a numeric case key's metadata as messages state it, e.g.
+    ``'must be >= 0.001 and <= 10'`` (in the key's SI unit, ``meta["unit"]``)."""
+    return "must be " + (interval_text(meta) or "finite")
 
 
 def _si_hint(key: str, value: float, meta: Mapping[str, Any]) -> str:
@@ -187,7 +105,6 @@ def _si_hint(key: str, value: float, meta: Mapping[str, Any]) -> str:
     if (meta["hi"] is not None and value > 1e9 * max(meta["hi"], 0.0)) or (
             meta["lo"] is not None and 0.0 <= value < 1e-9 * meta["lo"]):
         return ""   # further off than any unit prefix (1e30): no unit slip, a typing one
-    from .units import examples   # pint only on this error path
     try:
         example = examples(key, meta["unit"])[0]
     except Exception:   # noqa: BLE001 - a hint must never replace the error it adds to
@@ -195,28 +112,54 @@ def _si_hint(key: str, value: float, meta: Mapping[str, Any]) -> str:
     return f" (numbers are SI; text with a unit is read too, e.g. '{example}')"
 
 
-class _Section:
-    """Shared validation for the frozen section dataclasses."""
+class Section(Validated):
+    """A section of a case: its fields are the keys ``SECTION.NAME``, numbers in SI units
+    (text with a unit is read too) or words."""
 
     _name = ""
 
-    def __post_init__(self):
-        for f in dataclasses.fields(self):
-            meta = f.metadata
-            key = f"{self._name}.{f.name}"
-            value = getattr(self, f.name)
-            if value is None and meta.get("absent"):
-                continue
-            if "choices" in meta:
-                if not isinstance(value, str) or value not in meta["choices"]:
-                    raise CaseError(f"{key} = {_show(value)} is not valid: must be one of "
-                                    + ", ".join(repr(c) for c in meta["choices"]))
-                continue
-            object.__setattr__(self, f.name, _number(key, value, meta))
+    @classmethod
+    def label(cls, name: str) -> str:
+        return f"{cls._name}.{name}"
+
+    @classmethod
+    def unknown(cls, name: Any, valid, where: str = "") -> InputError:
+        return unknown_name("key", cls.label(str(name)), [cls.label(v) for v in valid], where)
+
+    @classmethod
+    def valid_text(cls, meta: Mapping[str, Any]) -> str:
+        if meta["kind"] == "choice":
+            return super().valid_text(meta)
+        return f"{range_text(meta)} [{meta['unit']}]"
+
+    @classmethod
+    def invalid(cls, name: str, value: Any, why: str, meta: Mapping[str, Any]) -> InputError:
+        key = cls.label(name)
+        if meta["kind"] == "choice" or why == "is out of range":
+            hint = _si_hint(key, value, meta) if isinstance(value, float) else ""
+            return InputError(f"{key} = {show(value)} {why}: {cls.valid_text(meta)}{hint}")
+        return InputError(f"{key} = {show(value)} is not a number: expected a value in "
+                          f"{meta['unit']} ({range_text(meta)}) or text with a unit")
+
+    @classmethod
+    def check(cls, name: str, value: Any, meta: Mapping[str, Any]) -> Any:
+        if meta["kind"] == "float":
+            if not _PHYSICAL.get() and "sign" in meta:   # the equations' own bounds
+                meta = {**meta, **meta["sign"]}
+            if type(value) is float:   # the common case: nothing to read
+                pass
+            elif isinstance(value, str):   # pint is imported only when text is read
+                value = to_si(cls.label(name), value, meta["unit"])
+            elif isinstance(value, numbers.Real) and not isinstance(value, bool):
+                try:   # a key is a float: messages show it as one (-1.0, not -1)
+                    value = float(value)
+                except OverflowError:   # 10**400: the range check names it
+                    pass
+        return super().check(name, value, meta)
 
 
 @dataclass(frozen=True)
-class Roller(_Section):
+class Roller(Section):
     """The roller. ``radius`` R [m], surface ``speed`` U_r [m/s], RMS ``roughness`` sigma_r [m]."""
 
     _name = "roller"
@@ -247,13 +190,13 @@ class Roller(_Section):
         super().__post_init__()
         p, g, d = self.groove_pitch, self.groove_width, self.groove_depth
         if g > 0.0 and p <= 0.0:
-            raise CaseError(f"roller.groove_pitch = {p!r} with roller.groove_width = {g!r}: "
+            raise InputError(f"roller.groove_pitch = {p!r} with roller.groove_width = {g!r}: "
                             "grooves need a pitch: must be > 0 [m] (and > the groove width)")
         if g > 0.0 and g >= p:
-            raise CaseError(f"roller.groove_width = {g!r} is out of range: must be < "
+            raise InputError(f"roller.groove_width = {g!r} is out of range: must be < "
                             f"roller.groove_pitch = {p!r} [m] (a land must remain)")
         if g > 0.0 and d <= 0.0:
-            raise CaseError(f"roller.groove_depth = {d!r} with roller.groove_width = {g!r}: "
+            raise InputError(f"roller.groove_depth = {d!r} with roller.groove_width = {g!r}: "
                             "must be > 0 [m] when the grooves have a width")
 
     @property
@@ -263,7 +206,7 @@ class Roller(_Section):
 
 
 @dataclass(frozen=True)
-class Web(_Section):
+class Web(Section):
     """The web (defaults: newsprint of the paper's Table 1).
 
     ``width`` L [m], ``tension`` T [N/m], ``speed`` U_w [m/s], ``thickness`` t [m],
@@ -307,7 +250,7 @@ class Web(_Section):
 
 
 @dataclass(frozen=True)
-class Wrap(_Section):
+class Wrap(Section):
     """Wrap ``angle_deg`` B in degrees, 0.1 <= B < 360."""
 
     _name = "wrap"
@@ -317,7 +260,7 @@ class Wrap(_Section):
 
 
 @dataclass(frozen=True)
-class Air(_Section):
+class Air(Section):
     """Air ``viscosity`` eta [Pa s] and ``ambient_pressure`` p_a [Pa]."""
 
     _name = "air"
@@ -333,7 +276,7 @@ class Air(_Section):
 
 
 @dataclass(frozen=True)
-class Friction(_Section):
+class Friction(Section):
     """Friction constants and model variants.
 
     ``mu_cc`` [-] and ``speed_constant`` C [m/s] are the paper's Eq. 29 constants.
@@ -362,7 +305,7 @@ class Friction(_Section):
 
 
 @dataclass(frozen=True)
-class Model(_Section):
+class Model(Section):
     """Which physics: ``physics = "full"`` (every effect webfem models, each switchable by
     its own key) or ``"paper"`` (Hashimoto's model exactly: no web inertia, a membrane unless
     web.bending_stiffness is given, no slip flow, the paper's permeation and friction)."""
@@ -372,7 +315,8 @@ class Model(_Section):
         "full", "paper", doc="every effect webfem models, or the paper's model exactly"))
 
 
-_SECTIONS: dict[str, type[_Section]] = {
+#: The sections of a case by their TOML table's name.
+SECTIONS: dict[str, type[Section]] = {
     "roller": Roller, "web": Web, "wrap": Wrap, "air": Air, "friction": Friction,
     "model": Model,
 }
@@ -396,104 +340,13 @@ def resolve_aliases(values: Mapping[str, Any]) -> Mapping[str, Any]:
     for alias, (key, factor, meta) in ALIASES.items():
         if alias in out:
             if key in out:
-                raise CaseError(f"{key} = {_show(out[key])} and {alias} = "
-                                f"{_show(out[alias])}: give one of them, not both")
-            out[key] = factor * _number(alias, out.pop(alias), meta)
+                raise InputError(f"{key} = {show(out[key])} and {alias} = "
+                                 f"{show(out[alias])}: give one of them, not both")
+            section, name = alias.split(".", 1)
+            out[key] = factor * SECTIONS[section].check(name, out.pop(alias), meta)
     return out
 
 
 def valid_keys() -> list[str]:
     """All dotted case keys, e.g. ``'roller.speed'``."""
-    return [f"{s}.{f.name}" for s, cls in _SECTIONS.items() for f in dataclasses.fields(cls)]
-
-
-_KEYS = frozenset(valid_keys())
-
-
-def _is_key(key: Any) -> bool:
-    return isinstance(key, str) and key in _KEYS
-
-
-def _section_keys(section: str) -> list[str]:
-    """The key names of ``section`` (its aliases included), e.g. ``width`` for ``web``."""
-    names = [f.name for f in dataclasses.fields(_SECTIONS[section])]
-    return names + [a.split(".", 1)[1] for a in ALIASES if a.startswith(section + ".")]
-
-
-def _where_named(name: str) -> list[str]:
-    """The dotted keys (aliases included) whose name is ``name``, in any section."""
-    return [f"{s}.{name}" for s in _SECTIONS if name in _section_keys(s)]
-
-
-def _either(keys: list[str]) -> str:
-    return " or ".join(f"'{k}'" for k in keys)
-
-
-def _unknown(key: Any, where: str = "", table: bool = False) -> CaseError:
-    """The error for a name that is no case key: a suggestion only where it exists (a
-    section's own keys for ``web.tensoin``; the section that has the key for
-    ``roller.tension``; the keys of a section given as a key, ``web=80``). ``table``: the
-    name heads a TOML table, so a close section name is what to suggest."""
-    key = key if isinstance(key, str) else _show(key)
-    head = f"unknown key '{key}'{where}"
-    if key in _SECTIONS and not table:
-        return CaseError(f"'{key}'{where} is a section, not a key: give {key}.KEY=VALUE with "
-                         f"one of its keys: {', '.join(_section_keys(key))}")
-    if table:
-        close = difflib.get_close_matches(key, list(_SECTIONS), n=1, cutoff=0.5)
-        hint = (f"; did you mean '{close[0]}'?" if close
-                else "; sections: " + ", ".join(_SECTIONS))
-        return CaseError(f"unknown section '{key}'{where}{hint}")
-    section, dot, name = key.partition(".")
-    if not dot:   # a bare name: the key of some section, or a misspelt one
-        owners = _where_named(key)
-        if owners:
-            return CaseError(f"{head}: '{key}' is a key of a section; did you mean "
-                             f"{_either(owners)}?")
-        names = sorted({n for s in _SECTIONS for n in _section_keys(s)})
-        close = difflib.get_close_matches(key, names, n=1, cutoff=0.6)
-        if close:
-            return CaseError(f"{head}; did you mean {_either(_where_named(close[0]))}?")
-        return CaseError(f"{head}; a key is SECTION.NAME, e.g. web.tension (`webfem keys` "
-                         "lists them)")
-    if section in _SECTIONS:
-        own = _section_keys(section)
-        owners = _where_named(name)   # an exact name elsewhere beats a near one here
-        if owners:
-            of = " and ".join(f"[{o.split('.')[0]}]" for o in owners)
-            return CaseError(f"{head}: '{name}' is not a key of [{section}] but of {of}; "
-                             f"did you mean {_either(owners)}?")
-        close = difflib.get_close_matches(name, own, n=1, cutoff=0.5)
-        if close:
-            return CaseError(f"{head}; did you mean '{section}.{close[0]}'?")
-        return CaseError(f"{head}; the keys of [{section}]: {', '.join(own)}")
-    owners = _where_named(name)   # a misspelt section: the key's own section
-    close = difflib.get_close_matches(section, list(_SECTIONS), n=1, cutoff=0.5)
-    if owners:
-        return CaseError(f"{head}; did you mean {_either(owners)}?")
-    if close:
-        near = difflib.get_close_matches(name, _section_keys(close[0]), n=1, cutoff=0.5)
-        if near:
-            return CaseError(f"{head}; did you mean '{close[0]}.{near[0]}'?")
-    return CaseError(f"{head}; sections: {', '.join(_SECTIONS)} (`webfem keys` lists their "
-                     "keys)")
-
-
-def _flatten(data: Mapping[str, Any], where: str = "") -> dict[str, Any]:
-    """``{"roller": {"speed": 1}}`` -> ``{"roller.speed": 1}``, rejecting unknown keys."""
-    flat = {}
-    for section, table in data.items():
-        if section not in _SECTIONS:
-            if isinstance(table, Mapping):
-                raise _unknown(section, where, table=True)
-            flat[section] = table  # dotted key already, checked below
-            continue
-        if not isinstance(table, Mapping):
-            raise CaseError(f"'{section}'{where} must be a table of keys, got {_show(table)}")
-        for key, value in table.items():
-            flat[f"{section}.{key}"] = value
-    for key in flat:
-        if not _is_key(key) and key not in ALIASES:
-            raise _unknown(key, where)
-    return flat
-
+    return [f"{s}.{f.name}" for s, cls in SECTIONS.items() for f in dataclasses.fields(cls)]

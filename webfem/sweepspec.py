@@ -31,9 +31,9 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from .case import Case, _case_from_tables, _read_toml
-from .errors import InputError
-from .sections import _SECTIONS, _flatten, _is_key, _show, _unknown, valid_keys
+from .case import Case, case_from_tables, read_toml
+from .errors import InputError, show
+from .keys import flatten, is_key, is_numeric, unknown_key, valid_keys
 
 __all__ = ["MAX_POINTS", "MAX_SERIES", "MAX_VALUES", "Sweep", "load_sweep"]
 
@@ -44,65 +44,59 @@ MAX_SERIES = 100
 #: Most points (values x series) per sweep: each point is one solve.
 MAX_POINTS = 100_000
 
-_KEYS = ("parameter", "values", "start", "stop", "num", "spacing")
+_SWEEP_KEYS = ("parameter", "values", "start", "stop", "num", "spacing")
 _DEFAULT_NUM = 40
-
-
-def _numeric(key: str) -> bool:
-    section, name = key.split(".", 1)
-    meta = {f.name: f.metadata for f in dataclasses.fields(_SECTIONS[section])}[name]
-    return "choices" not in meta
 
 
 def _count(name: str, value: Any, where: str = "") -> int:
     """A number of points: a true integer from 1 to MAX_VALUES (2.7, "8", True refused)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise InputError(f"{name} = {_show(value)}{where} is not a whole number: "
+        raise InputError(f"{name} = {show(value)}{where} is not a whole number: "
                          f"must be an integer from 1 to {MAX_VALUES}")
     if not 1 <= value <= MAX_VALUES:
-        raise InputError(f"{name} = {_show(value)}{where} is out of range: "
+        raise InputError(f"{name} = {show(value)}{where} is out of range: "
                          f"must be from 1 to {MAX_VALUES} (points per series)")
     return int(value)
 
 
 def _finite(name: str, value: Any, where: str = "") -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise InputError(f"{name} = {_show(value)}{where} is not a number: "
+        raise InputError(f"{name} = {show(value)}{where} is not a number: "
                          "must be a finite number")
     try:
         x = float(value)
     except OverflowError:
         x = math.inf
     if not math.isfinite(x):
-        raise InputError(f"{name} = {_show(value)}{where} is out of range: "
+        raise InputError(f"{name} = {show(value)}{where} is out of range: "
                          "must be a finite number")
     return x
 
 
 def _check_parameter(parameter: Any, where: str = "") -> None:
     if not isinstance(parameter, str):
-        raise InputError(f"sweep.parameter = {_show(parameter)}{where} is not valid: "
+        raise InputError(f"sweep.parameter = {show(parameter)}{where} is not valid: "
                          "must be a case key such as 'roller.speed'")
-    if not _is_key(parameter):
-        raise _unknown(parameter, where + " (sweep.parameter)")
-    if not _numeric(parameter):
+    if not is_key(parameter):
+        raise unknown_key(parameter, where + " (sweep.parameter)")
+    if not is_numeric(parameter):
         raise InputError(f"sweep.parameter = {parameter!r}{where} is not a numeric key: "
                          "a sweep varies a number; numeric keys: "
-                         + ", ".join(k for k in valid_keys() if _numeric(k)))
+                         + ", ".join(k for k in valid_keys() if is_numeric(k)))
 
 
 def _check_values(values: Any) -> tuple[float, ...]:
     if isinstance(values, np.ndarray) and values.ndim == 1:
         values = values.tolist()
     if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
-        raise InputError(f"sweep.values = {_show(values)} is not a list of numbers: "
+        raise InputError(f"sweep.values = {show(values)} is not a list of numbers: "
                          f"write e.g. values = [1.0, 2.5, 5.0] (1 to {MAX_VALUES} numbers)")
     if not 1 <= len(values) <= MAX_VALUES:
         raise InputError(f"sweep.values holds {len(values)} numbers: "
                          f"must hold 1 to {MAX_VALUES}")
     out, seen = [], set()
     for i, v in enumerate(values):
-        x = _finite(f"sweep.values item {i + 1}", v, f" (of {_show(values)})")
+        x = _finite(f"sweep.values item {i + 1}", v, f" (of {show(values)})")
         if x in seen:
             raise InputError(f"sweep.values holds {x:g} twice: each value may appear once "
                              "(results are keyed by series and value)")
@@ -113,23 +107,23 @@ def _check_values(values: Any) -> tuple[float, ...]:
 
 def _check_series(series: Any) -> tuple[tuple[str, Case], ...]:
     if isinstance(series, (str, bytes)) or not isinstance(series, Sequence):
-        raise InputError(f"series = {_show(series)} is not valid: "
+        raise InputError(f"series = {show(series)} is not valid: "
                          "must be a list of (label, Case) pairs")
     if not 1 <= len(series) <= MAX_SERIES:
         raise InputError(f"a sweep has {len(series)} series: must have 1 to {MAX_SERIES}")
     out, first = [], {}
     for i, entry in enumerate(series, 1):
         if not (isinstance(entry, Sequence) and len(entry) == 2):
-            raise InputError(f"series {i} = {_show(entry)} is not a (label, Case) pair")
+            raise InputError(f"series {i} = {show(entry)} is not a (label, Case) pair")
         label, case = entry
         if not isinstance(label, str) or not label.strip():
-            raise InputError(f"series label = {_show(label)} (series {i}) is not valid: "
+            raise InputError(f"series label = {show(label)} (series {i}) is not valid: "
                              "must be non-empty text")
         if label in first:
             raise InputError(f"series label '{label}' is used twice (series {first[label]} "
                              f"and {i}): labels must be unique (results are keyed by label)")
         if not isinstance(case, Case):
-            raise InputError(f"series '{label}' holds {_show(case)}: "
+            raise InputError(f"series '{label}' holds {show(case)}: "
                              "must hold a webfem.case.Case")
         first[label] = i
         out.append((label, case))
@@ -220,7 +214,7 @@ def _values_from_spec(spec: Mapping[str, Any], where: str) -> Any:
     num = _count("sweep.num", spec.get("num", _DEFAULT_NUM), where)
     spacing = spec.get("spacing", "linear")
     if spacing not in ("linear", "log"):
-        raise InputError(f"sweep.spacing = {_show(spacing)}{where} is not valid: "
+        raise InputError(f"sweep.spacing = {show(spacing)}{where} is not valid: "
                          "must be 'linear' or 'log'")
     if spacing == "log" and min(start, stop) <= 0:
         raise InputError(f"sweep.spacing = 'log'{where} needs start and stop > 0, got "
@@ -235,7 +229,7 @@ def _values_from_spec(spec: Mapping[str, Any], where: str) -> Any:
 
 def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
     if not isinstance(entries, list) or not all(isinstance(e, Mapping) for e in entries):
-        raise InputError(f"series = {_show(entries)}{where} is not valid: must be [[series]] "
+        raise InputError(f"series = {show(entries)}{where} is not valid: must be [[series]] "
                          "tables (label = \"...\" and the case keys that differ)")
     if len(entries) > MAX_SERIES:
         raise InputError(f"[[series]]{where}: {len(entries)} tables, at most {MAX_SERIES}")
@@ -244,12 +238,12 @@ def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
         entry = dict(entry)
         label = entry.pop("label", f"series {i}")
         if not isinstance(label, str) or not label.strip():
-            raise InputError(f"series label = {_show(label)}{where} (series {i}) is not "
+            raise InputError(f"series label = {show(label)}{where} (series {i}) is not "
                              "valid: must be non-empty text")
         at = f"{where} (series '{label}')"
-        flat = _flatten(entry, at)
+        flat = flatten(entry, at)
         if parameter in flat:
-            raise InputError(f"{parameter} = {_show(flat[parameter])}{at}: {parameter} is the "
+            raise InputError(f"{parameter} = {show(flat[parameter])}{at}: {parameter} is the "
                              "swept parameter, set at every point; remove it from the series")
         try:
             series.append((label, case.updated(flat)))
@@ -262,17 +256,18 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
                      overrides: Mapping[str, Any] | None = None) -> Sweep:
     spec = data.get("sweep", {})
     if not isinstance(spec, Mapping):
-        raise InputError(f"sweep = {_show(spec)}{where} is not valid: must be a [sweep] "
+        raise InputError(f"sweep = {show(spec)}{where} is not valid: must be a [sweep] "
                          "table (parameter, then values or start, stop, num, spacing)")
     for key in spec:
-        if key not in _KEYS:
-            close = difflib.get_close_matches(key, _KEYS, n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else "; valid: " + ", ".join(_KEYS)
+        if key not in _SWEEP_KEYS:
+            close = difflib.get_close_matches(key, _SWEEP_KEYS, n=1)
+            hint = (f"; did you mean '{close[0]}'?" if close
+                    else "; valid: " + ", ".join(_SWEEP_KEYS))
             raise InputError(f"unknown key 'sweep.{key}'{where}{hint}")
     parameter = spec.get("parameter", "roller.speed")
     _check_parameter(parameter, where)
     if overrides and parameter in overrides:
-        raise InputError(f"--set {parameter} = {_show(overrides[parameter])}: {parameter} is "
+        raise InputError(f"--set {parameter} = {show(overrides[parameter])}: {parameter} is "
                          f"the swept parameter{where}, set at every point; change [sweep] "
                          "instead")
     if "sweep" in data:
@@ -288,6 +283,6 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
 
 def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Sweep:
     """Read a case TOML file with its ``[sweep]`` and ``[[series]]`` tables."""
-    data, where = _read_toml(path)
-    case = _case_from_tables(data, where, overrides)
+    data, where = read_toml(path)
+    case = case_from_tables(data, where, overrides)
     return _sweep_from_dict(case, data, where, overrides)

@@ -34,7 +34,7 @@ import functools
 import math
 import re
 
-from .errors import InputError
+from .errors import InputError, show
 
 __all__ = ["SYSTEMS", "KINDS", "ROLES", "to_si", "examples", "kind_of", "display", "convert",
            "unit_label", "column_name", "table_in_units"]
@@ -126,11 +126,9 @@ def to_si(key: str, text: str, unit: str) -> float:
         Naming the key, the text and what it expects: not a number with a unit, an unknown
         unit, or the wrong dimension (``'3 m'`` for a tension).
     """
-    from .sections import _show   # the one way messages show values
-
     e1, e2 = examples(key, unit)
     expect = f"expected {kind_of(unit)}, e.g. '{e1}' or '{e2}'"
-    shown = _show(text)
+    shown = show(text)
     if not _NUMBER_FIRST.match(text):
         raise InputError(f"{key} = {shown} is not a number: give a number and a unit; "
                          f"{expect}")

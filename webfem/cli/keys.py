@@ -12,24 +12,25 @@ def add_parser(subparsers) -> None:
 
 
 def _case_lines() -> list[str]:
-    from ..case import _SECTIONS, Case
-    from ..sections import ALIASES, _range_text
+    from ..case import Case
+    from ..keys import key_range
+    from ..sections import ALIASES, SECTIONS
     from ..units import examples
 
     def line(name, key, default, meta):
-        if "choices" in meta:
+        if meta["kind"] == "choice":
             extra = " one of " + ", ".join(meta["choices"])
             valid = ""
         else:
             e1, e2 = examples(key, meta["unit"])
             extra = f" [{meta['unit']}] or e.g. '{e1}', '{e2}'"
             # the range every value is checked against (sections.py), in the key's SI unit
-            valid = f" ({_range_text(meta).replace('must be', 'valid:')} {meta['unit']})"
+            valid = f" ({key_range(key).replace('must be', 'valid:')} {meta['unit']})"
         return f"  {name:<18} = {default!r:<12}{extra}  {meta.get('doc', '')}{valid}"
 
     default = Case()
     lines = []
-    for name, cls in _SECTIONS.items():
+    for name, cls in SECTIONS.items():
         lines.append(f"[{name}]")
         for f in dataclasses.fields(cls):
             key = f"{name}.{f.name}"

@@ -9,6 +9,10 @@ composite pressure x Hermite element asks for function 0 once more per pressure 
 the same work is done up to eight times; it was the largest cost of building a 1-D problem
 and of evaluating the gap at points.
 
+The classes below override scikit-fem internals (``gbasis``, ``_pbasis_init``,
+``_deduce_bfun``), so pyproject.toml pins scikit-fem to 12.x, the versions the bitwise checks
+pass on.
+
 :class:`HermiteLine` computes all four functions in one pass and keeps the last point set's
 result. The arithmetic is scikit-fem's own, operation by operation and in the same order, so
 the values are bitwise the same (tests/test_hermite.py). That matters: the global monomial

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["graded_nodes", "refine_nodes", "line_mesh"]
+__all__ = ["graded_nodes", "refine_nodes", "line_mesh", "segment"]
 
 #: Points the mesh resolves, relative to the wrap edges: inlet edge, outlet edge, exit
 #: constriction (about 0.5 past the outlet edge, physics.md).
@@ -30,7 +30,7 @@ def _size(X, features, fine, growth, coarse):
     return np.minimum(fine + growth * dist, coarse)
 
 
-def _segment(a, b, features, fine, growth, coarse):
+def segment(a, b, features, fine, growth, coarse):
     """Nodes on [a, b] equidistributing 1/size (a, b both kept)."""
     s = np.linspace(a, b, 4001)
     density = 1.0 / _size(s, features, fine, growth, coarse)
@@ -54,9 +54,9 @@ def graded_nodes(beta: float, entry: float, fine: float = 0.08, growth: float = 
         raise ValueError(f"beta = {beta} and entry = {entry} must be > 0")
     e = beta / 2.0
     features = [-e, e, e + _EXIT_OFFSET]
-    parts = [_segment(-e - entry, -e, features, fine, growth, coarse),
-             _segment(-e, e, features, fine, growth, coarse),
-             _segment(e, e + entry, features, fine, growth, coarse)]
+    parts = [segment(-e - entry, -e, features, fine, growth, coarse),
+             segment(-e, e, features, fine, growth, coarse),
+             segment(e, e + entry, features, fine, growth, coarse)]
     X = np.unique(np.concatenate(parts))
     return refine_nodes(X, level)
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError as CaseError
+from ..errors import InputError
 
 __all__ = ["read_x_nodes"]
 
@@ -21,13 +21,13 @@ def read_x_nodes(path) -> np.ndarray:
 
     path = Path(path)
     if not path.is_file():
-        raise CaseError(f"mesh file '{path}' does not exist")
+        raise InputError(f"mesh file '{path}' does not exist")
     try:
         mesh = meshio.read(path)
     except (Exception, SystemExit) as err:  # meshio raises many kinds (even SystemExit)
-        raise CaseError(f"mesh file '{path}' is not a mesh meshio can read: {err}") from None
+        raise InputError(f"mesh file '{path}' is not a mesh meshio can read: {err}") from None
     x = np.unique(np.round(np.asarray(mesh.points, float)[:, 0], 15))
     if x.size < 3 or not np.all(np.isfinite(x)):
-        raise CaseError(f"mesh file '{path}' has {x.size} distinct finite x positions; "
-                        "a web mesh needs at least 3")
+        raise InputError(f"mesh file '{path}' has {x.size} distinct finite x positions; "
+                         "a web mesh needs at least 3")
     return x

@@ -36,11 +36,11 @@ def width_nodes(lam: float, level: int = 0, half: bool = True, fine: float = 0.2
     ``cells`` cells (the pressure is close to a parabola across the width, which quadratic
     elements carry exactly). ``level`` bisects every cell.
     """
-    from .mesh import _segment, refine_nodes
+    from .mesh import segment, refine_nodes
 
     if not (lam > 0):
         raise ValueError(f"lam = {lam} must be > 0")
-    Z = _segment(0.0, lam, [lam], min(fine, lam / cells), growth, lam / cells)
+    Z = segment(0.0, lam, [lam], min(fine, lam / cells), growth, lam / cells)
     Z[0], Z[-1] = 0.0, lam
     Z = refine_nodes(Z, level)
     return Z if half else np.concatenate([-Z[:0:-1], Z])

@@ -20,7 +20,8 @@ from ..files import replacing
 from ..units import ROLES, convert, unit_label
 
 __all__ = ["sweep_chart", "traction_loss_chart", "calibration_chart", "needs_markers",
-           "PARAMETER_LABELS", "parameter_label", "display_values", "answered", "log_spaced"]
+           "PARAMETER_LABELS", "parameter_label", "display_values", "answered", "log_spaced",
+           "level_text", "save_figure"]
 
 _GAP_STYLES = (("h_inlet", "inlet", (0, (6, 2))), ("h_center", "centre", (0, (3, 2))),
                ("h_outlet", "exit", (0, (1, 1.5))))
@@ -62,7 +63,7 @@ def parameter_label(key: str, units: str = "si") -> str:
 PARAMETER_LABELS = {key: parameter_label(key) for key in _PARAMETER_NAMES}
 
 
-def _level_text(value: float) -> str:
+def level_text(value: float) -> str:
     """A regime level as labelled: two decimals (um), three significant digits below 1
     (mil), so close levels stay apart in every unit."""
     decimals = max(2, 2 - int(np.floor(np.log10(abs(value))))) if value else 2
@@ -125,7 +126,7 @@ def _level_labels(ax, levels: dict, unit: str = "um") -> None:
         y = to_px((0.0, level))[1]
         at = max(y, placed[-1][2] + step) if placed else y
         whose = "" if who == everyone else f" ({', '.join(sorted(who))})"
-        placed.append((level, f"{name} = {_level_text(level)} {unit}{whose}", at, y))
+        placed.append((level, f"{name} = {level_text(level)} {unit}{whose}", at, y))
     for level, text, at, y in placed:
         ax.annotate(text, (1.0, level), xycoords=("axes fraction", "data"),
                     xytext=(-3, 1.5 + (at - y) * 72.0 / fig.dpi), textcoords="offset points",
@@ -196,7 +197,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
             for r in good:
                 if np.isfinite(_f(r, key)):
-                    value = float(_level_text(factor * float(gaps([r], key)[0])))
+                    value = float(level_text(factor * float(gaps([r], key)[0])))
                     levels.setdefault(value, (name, set()))[1].add(str(label))
     if log_x is None:
         log_x = log_spaced([r["value"] for r in rows])

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .vtu import _write_mesh
+from .vtu import write_mesh
 
 __all__ = ["web_line_mesh", "film_quad_mesh", "write_meshes"]
 
@@ -82,5 +82,5 @@ def write_meshes(x, z, folder, stem: str, half_wrap: float | None = None) -> lis
     meaning = dict(COORDINATES)
     if half_wrap is not None:
         meaning[f"wrap edges at X = -+{half_wrap:.6g} m (R B / 2)"] = float(half_wrap)
-    return [_write_mesh(web_line_mesh(x, half_wrap), folder / f"{stem}_web.vtu", meaning),
-            _write_mesh(film_quad_mesh(x, z, half_wrap), folder / f"{stem}_film.vtu", meaning)]
+    return [write_mesh(web_line_mesh(x, half_wrap), folder / f"{stem}_web.vtu", meaning),
+            write_mesh(film_quad_mesh(x, z, half_wrap), folder / f"{stem}_film.vtu", meaning)]

@@ -38,9 +38,12 @@ from matplotlib.ticker import FormatStrFormatter, NullFormatter  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 from ..units import convert, unit_label  # noqa: E402
-from .charts import _level_text, _save  # noqa: E402
+from .charts import level_text, save_figure  # noqa: E402
 
 __all__ = ["film_pictures", "film_figure", "REGIME_COLOURS"]
+
+# every picture is saved through this name (a test replaces it to look at the figure)
+_save = save_figure
 
 #: Regime code -> (name, band colour), codes as in :data:`webfem.physics.contact.REGIMES`.
 REGIME_COLOURS = {0: ("boundary", "#f4a6a6"), 1: ("mixed", "#f9d98c"), 2: ("fluid", "#b9dcf2")}
@@ -173,9 +176,9 @@ def film_figure(result, path, title: str | None = None, units: str = "si") -> Pa
     x, h = _centre_line(result)
     inside = np.abs(x) <= reach * 1.02
     ax.plot(x[inside] * to_x, h[inside] * to_h, color="k", lw=1.4, label="gap h")
-    levels = [(s.h_c * to_h, f"h_c = {_level_text(s.h_c * to_h)} {h_unit} (boundary below)",
+    levels = [(s.h_c * to_h, f"h_c = {level_text(s.h_c * to_h)} {h_unit} (boundary below)",
                "tab:orange"),
-              (3 * s.sigma * to_h, f"3 sigma = {_level_text(3 * s.sigma * to_h)} {h_unit} (fluid "
+              (3 * s.sigma * to_h, f"3 sigma = {level_text(3 * s.sigma * to_h)} {h_unit} (fluid "
                "above)", "tab:blue")]
     for value, text, colour in levels:
         if math.isfinite(value):

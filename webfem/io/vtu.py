@@ -26,7 +26,7 @@ from ..errors import InputError
 from ..files import remove_stale_temps, replacing, write_text
 
 __all__ = ["ARRAY_NAMES", "WEB_FIELDS", "FILM_FIELDS", "MEANING", "H_MIN_KEYS", "H_MIN_NOTE",
-           "web_mesh", "film_mesh", "write_result", "write_pvd", "SweepVtu"]
+           "web_mesh", "film_mesh", "write_mesh", "write_result", "write_pvd", "SweepVtu"]
 
 #: Result field -> VTU array name: the unit in brackets, so ParaView's colour bars carry it.
 ARRAY_NAMES = {"w": "w [m]", "h": "h [m]", "p_rel": "p-p_a [Pa]", "p": "p [Pa]",
@@ -60,7 +60,9 @@ def _field_data(values: dict) -> bytes:
     return "\n".join(lines).encode("utf-8")
 
 
-def _write_mesh(mesh: meshio.Mesh, path: Path, field_data: dict | None = None) -> Path:
+def write_mesh(mesh: meshio.Mesh, path: Path, field_data: dict | None = None) -> Path:
+    """Write ``mesh`` to VTU file ``path`` atomically, with ``field_data`` (name -> number,
+    read back by :func:`read_field_data`) in the file; returns ``path``."""
     with replacing(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
         if field_data:   # meshio's VTU writer drops field data: add it after the grid tag
@@ -179,10 +181,10 @@ def write_result(result, folder, stem: str | None = None, field_data: dict | Non
     paths = []
     if result.film is not None:
         film = film_mesh(result)
-        paths.append(_write_mesh(film, folder / f"{stem}_film.vtu", data | _minimum_data(
+        paths.append(write_mesh(film, folder / f"{stem}_film.vtu", data | _minimum_data(
             result, film.point_data.get(ARRAY_NAMES["h"], ()))))
     web = web_mesh(result)
-    paths.insert(0, _write_mesh(web, folder / f"{stem}_web.vtu", data | _minimum_data(
+    paths.insert(0, write_mesh(web, folder / f"{stem}_web.vtu", data | _minimum_data(
         result, web.point_data.get(ARRAY_NAMES["h"], ()))))
     return paths
 

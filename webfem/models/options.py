@@ -1,7 +1,8 @@
 """Solver options as types: one frozen dataclass per model, validated on creation.
 
 Every option is a named, documented field with its valid range in the field's metadata;
-:class:`Options` checks them all in one place, builds an options object from keywords
+:class:`Options` (a :class:`webfem.validated.Validated`, the base the case sections share)
+checks them all in one place, builds an options object from keywords
 (:meth:`Options.from_mapping`: unknown names are errors that suggest the closest valid one)
 or from the command line's strings (:meth:`Options.from_strings`), and describes itself for
 ``--help``. The registry (:mod:`webfem.models.registry`) ties each model to its type.
@@ -28,7 +29,8 @@ from typing import Any, ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import InputError, unknown_name
+from ..errors import InputError
+from ..validated import Validated, spec
 
 __all__ = ["Options", "ClosedFormOptions", "FE1DOptions", "FE2DOptions", "AutoOptions",
            "option"]
@@ -39,117 +41,62 @@ _FALSE = {"false", "no", "off", "0"}
 
 def option(default, doc: str, kind: str, *, lo=None, hi=None, lo_open=False, hi_open=False,
            choices: tuple = (), none: bool = False, cli: bool = True):
-    """A field with its documentation and valid range.
+    """A field with its documentation and valid range (:func:`webfem.validated.spec`).
 
     ``kind``: "int", "float", "bool", "choice", "path" or "nodes" (an array, API only);
     ``lo``/``hi``: bounds (open or closed); ``none``: None is allowed (meaning stated in
     ``doc``); ``cli``: settable with ``--opt``.
     """
-    meta = dict(doc=doc, kind=kind, lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open,
-                choices=tuple(choices), none=none, cli=cli)
-    return field(default=default, metadata=meta)
-
-
-def _range_text(meta: Mapping[str, Any]) -> str:
-    kind = meta["kind"]
-    if kind == "choice":
-        text = "one of " + ", ".join(repr(c) for c in meta["choices"])
-    elif kind == "bool":
-        text = "true or false"
-    elif kind in ("path", "nodes"):
-        text = "a mesh file" if kind == "path" else "an array of node positions"
-    else:
-        parts = []
-        if meta["lo"] is not None:
-            parts.append(f"{'>' if meta['lo_open'] else '>='} {meta['lo']:g}")
-        if meta["hi"] is not None:
-            parts.append(f"{'<' if meta['hi_open'] else '<='} {meta['hi']:g}")
-        text = ("an integer" if kind == "int" else "a finite number") + (
-            " " + " and ".join(parts) if parts else "")
-    return text + (" (or none)" if meta["none"] else "")
+    return field(default=default, metadata=spec(doc, kind, lo=lo, hi=hi, lo_open=lo_open,
+                                                 hi_open=hi_open, choices=choices,
+                                                 none=none, cli=cli))
 
 
 @dataclass(frozen=True, repr=False)
-class Options:
+class Options(Validated):
     """Shared validation and construction of the per-model option types."""
 
     #: The model these options belong to (for messages).
     model: ClassVar[str] = ""
 
-    def __post_init__(self):
-        for f in dataclasses.fields(self):
-            value = self._checked(f, getattr(self, f.name))
-            object.__setattr__(self, f.name, value)
+    @classmethod
+    def label(cls, name: str) -> str:
+        return f"{cls.model} option {name}" if cls.model else name
 
     @classmethod
-    def _checked(cls, f: dataclasses.Field, value: Any) -> Any:
-        meta = f.metadata
+    def noun(cls) -> str:
+        return f"{cls.model} option"
+
+    @classmethod
+    def what_is_valid(cls, meta: Mapping[str, Any]) -> str:
+        if meta["kind"] in ("path", "nodes"):
+            text = "a mesh file" if meta["kind"] == "path" else "an array of node positions"
+            return text + (" (or none)" if meta["none"] else "")
+        return super().what_is_valid(meta)
+
+    @classmethod
+    def check(cls, name: str, value: Any, meta: Mapping[str, Any]) -> Any:
+        """The kinds only options have: a mesh file and an array of nodes."""
         kind = meta["kind"]
-        name = f"{cls.model} option {f.name}" if cls.model else f.name
-
-        def bad(why="is not valid"):
-            return InputError(f"{name} = {value!r} {why}: must be {_range_text(meta)}")
-
-        if value is None:
-            if meta["none"]:
-                return None
-            raise bad()
-        if kind == "bool":
-            if not isinstance(value, (bool, np.bool_)):
-                raise bad()
-            return bool(value)
-        if kind == "choice":
-            if value not in meta["choices"]:
-                raise bad()
-            return value
+        if kind not in ("path", "nodes") or (value is None and meta["none"]):
+            return super().check(name, value, meta)
         if kind == "path":
             if not isinstance(value, (str, Path)):
-                raise bad()
+                raise cls.invalid(name, value, "is not valid", meta)
             if not Path(value).is_file():
-                raise InputError(f"{name}: mesh file '{value}' does not exist")
+                raise InputError(f"{cls.label(name)}: mesh file '{value}' does not exist")
             return str(value)
-        if kind == "nodes":
-            try:
-                arr = np.asarray(value, float).ravel()
-            except (TypeError, ValueError):
-                raise bad() from None
-            if arr.size < 3 or not np.all(np.isfinite(arr)):
-                raise bad("has fewer than 3 finite nodes")
-            return arr
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float,
-                                                                          np.number)):
-            raise bad("is not a number")
-        number = float(value)
-        if not math.isfinite(number):
-            raise bad("is out of range")
-        if kind == "int":
-            if number != int(number):
-                raise bad("is not an integer")
-            number = int(number)
-        lo, hi = meta["lo"], meta["hi"]
-        if lo is not None and (number <= lo if meta["lo_open"] else number < lo):
-            raise bad("is out of range")
-        if hi is not None and (number >= hi if meta["hi_open"] else number > hi):
-            raise bad("is out of range")
-        return number
+        try:
+            arr = np.asarray(value, float).ravel()
+        except (TypeError, ValueError):
+            raise cls.invalid(name, value, "is not valid", meta) from None
+        if arr.size < 3 or not np.all(np.isfinite(arr)):
+            raise cls.invalid(name, value, "has fewer than 3 finite nodes", meta)
+        return arr
 
     # -- construction ---------------------------------------------------------------------
     @classmethod
-    def names(cls) -> list[str]:
-        """Every option name of this model."""
-        return [f.name for f in dataclasses.fields(cls)]
-
-    @classmethod
-    def from_mapping(cls, values: Mapping[str, Any] | None = None):
-        """Options from keywords; an unknown name is an error naming the closest valid one."""
-        values = dict(values or {})
-        for key in values:
-            if key not in cls.names():
-                raise cls._unknown(key, cls.names())
-        return cls(**values)
-
-    @classmethod
-    def _unknown(cls, name: str, valid, where: str = "") -> InputError:
+    def unknown(cls, name: Any, valid, where: str = "") -> InputError:
         """The error for a name that is not an option of this model: an option of another
         model says whose it is (``symmetry`` is fe2d's, not fe1d's), instead of a near
         name of this model's that means something else; a misspelling gets the closest
@@ -165,7 +112,7 @@ class Options:
             return InputError(f"unknown {cls.model} option '{name}'{where}: it is an "
                               f"option of {whose}, not of {cls.model}: give it with that "
                               f"model ({use}) or leave it out; {cls.model} options: {takes}")
-        return unknown_name(f"{cls.model} option", name, valid, where)
+        return super().unknown(name, valid, where)
 
     @classmethod
     def parse(cls, name: str, text: str) -> Any:
@@ -176,11 +123,11 @@ class Options:
             raise InputError(f"{cls.model} option '{name}' (--opt) is set from Python only "
                              f"({fields[name].metadata['doc']})")
         if name not in fields:
-            raise cls._unknown(name, valid, " (--opt)")
+            raise cls.unknown(name, valid, " (--opt)")
         meta = fields[name].metadata
         raw = text.strip().strip('"').strip("'")
         kind = meta["kind"]
-        bad = InputError(f"--opt {name}={text}: {name} must be {_range_text(meta)}")
+        bad = InputError(f"--opt {name}={text}: {name} must be {cls.what_is_valid(meta)}")
         if meta["none"] and raw.lower() in ("none", "null", ""):
             return None
         if kind == "bool":
@@ -212,13 +159,6 @@ class Options:
             values[key] = cls.parse(key, raw)
         return cls.from_mapping(values)
 
-    def replace(self, **changes) -> "Options":
-        """A copy with some options changed (validated again)."""
-        for key in changes:
-            if key not in self.names():
-                raise self._unknown(key, self.names())
-        return dataclasses.replace(self, **changes)
-
     def changed(self) -> dict[str, Any]:
         """The options that differ from their defaults (for sweep signatures and repr)."""
         out = {}
@@ -247,7 +187,7 @@ class Options:
                 continue
             default = "none" if f.default is None else repr(f.default)
             lines.append(f"{f.name} = {default}: {f.metadata['doc']} "
-                         f"({_range_text(f.metadata)})")
+                         f"({cls.what_is_valid(f.metadata)})")
         return "\n".join(lines) if lines else "(no options)"
 
 

@@ -164,7 +164,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     Examples
     --------
     >>> import tempfile, webfem
-    >>> from webfem.case import Sweep
+    >>> from webfem.sweepspec import Sweep
     >>> spec = Sweep("roller.speed", (20.0, 30.0), (("base", webfem.Case()),))
     >>> rows = run(spec, "closed-form", tempfile.mkdtemp() + "/s.csv")
     >>> [(r["value"], r["converged"]) for r in rows]
