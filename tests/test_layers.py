@@ -17,7 +17,7 @@ LAYERS = [
      "files", "bundled",
      "physics"},
     {"fem"},
-    {"result", "describe"},
+    {"summary", "result", "describe"},
     {"models"},
     {"api"},
     {"sweeps", "traction", "calibrate", "effects", "idler", "studies", "groove_sizing"},

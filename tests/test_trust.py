@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 import webfem
-from webfem.case import load_case
 from webfem.fem.outcome import SolveInfo
 from webfem.api import solve_along
 from webfem.errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
