@@ -99,7 +99,7 @@ def run(args) -> int:
     png_path = sweep_chart(rows, out / f"{stem}.png",
                            title=f"{Path(args.case).stem}: {answered(rows, args.model)}"
                            + (" (thin: closed form, Eq. 21)" if reference else without),
-                           reference=reference, units=args.units,
+                           beside=reference, units=args.units,
                            log_x=True if args.log else None)
     for path in (csv_path, units_csv, png_path):
         if path is not None:

@@ -27,7 +27,7 @@ from . import continuation, forms
 from .grooves import GroovePattern
 from .hermite import LineProbes
 from .mesh import line_mesh
-from .newton import newton
+from .newton import PatternSolver, newton
 from .outcome import SolveInfo
 from .picard import frozen_coefficient_picard
 from .systems import FilmSystem, width_load
@@ -105,6 +105,8 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass, self._system = None, None
+        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering)
+        self.solver = PatternSolver()
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
@@ -230,7 +232,7 @@ class FoilBearing2D:
         """Damped Newton on the ``rows`` (default: every free unknown)."""
         return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
                       self.free if rows is None else rows, tol=tol, max_iter=max_iter,
-                      rtol=rtol, chord=chord)
+                      rtol=rtol, chord=chord, solver=self.solver)
 
     def consistent_pressure(self, u, prm, tol=1e-8, rtol=0.0):
         """Film pressure for the web as it is (a film-only Newton solve, to ``tol`` or

@@ -120,7 +120,7 @@ def _factorised(A) -> Callable[[np.ndarray], np.ndarray]:
     return PatternSolver._factor(sp.csc_matrix(A), "MMD_AT_PLUS_A").solve
 
 
-#: The solver :func:`newton` uses; it keeps its plans across calls (sweep points, meshes).
+#: The solver :func:`newton` uses when it is given none (the FE problems own one each).
 SOLVER = PatternSolver()
 
 
@@ -151,7 +151,8 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
            u0: np.ndarray, free: np.ndarray | None = None, tol: float = 1e-10,
            step_tol: float = 1e-10, max_iter: int = 50, min_damping: float = 1e-4,
            monitor: Callable[[int, float], None] | None = None,
-           rtol: float = 0.0, chord: bool = True) -> NewtonResult:
+           rtol: float = 0.0, chord: bool = True,
+           solver: PatternSolver | None = None) -> NewtonResult:
     """Solve F(u) = 0 for the ``free`` entries of u (others keep u0's values).
 
     Converged when ||F||_2 <= max(tol, rtol ||F(u0)||_2), or when the full Newton step's
@@ -167,6 +168,9 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     instead of an assembly and a factorisation, and is kept only if it reaches the tolerance
     or lowers ||F|| :data:`CHORD_GAIN` times; otherwise the iteration takes the Newton step
     from the same point. The converged state meets the same tolerance either way.
+
+    ``solver``: the :class:`PatternSolver` whose plans the factorisations reuse (a discrete
+    problem keeps its own; default: :data:`SOLVER`).
     """
     u = np.array(u0, dtype=float, copy=True)
     free = np.arange(u.size) if free is None else np.asarray(free)
@@ -192,7 +196,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                     monitor(it, norm)
                 continue
         try:
-            last = SOLVER.factor(J(u), free)
+            last = (solver or SOLVER).factor(J(u), free)
             du = last(-r)
         except RuntimeError as err:  # singular factor
             return NewtonResult(u, False, it - 1, norm, history, f"linear solve failed: {err}")

@@ -136,11 +136,11 @@ def _level_labels(ax, levels: dict, unit: str = "um") -> None:
 
 
 def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
-                reference: list[dict] | None = None, units: str = "si",
+                beside: list[dict] | None = None, units: str = "si",
                 log_x: bool | None = None) -> Path:
     """mu against the swept parameter per series, with the gaps (dashed) on a second axis.
 
-    ``reference``: rows of another model (the closed form beside an FE sweep), drawn thin in
+    ``beside``: rows of another model (the closed form beside an FE sweep), drawn thin in
     the series' colours: mu solid, its gaps dashed like the main ones. Points that did not
     converge are marked x on the axis and left out of the lines. Sweeps of fewer than 30
     points or log-spaced ones get markers (:func:`needs_markers`).
@@ -177,7 +177,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         model = answered(sel, sel[0]["model"])
         ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
                 lw=1.8, marker=marker, ms=3.5,
-                label=f"{label}: mu ({model})" if len(series) > 1 or reference
+                label=f"{label}: mu ({model})" if len(series) > 1 or beside
                 else f"mu ({model})")
         bad = [r for r, k in zip(sel, ok) if not k]
         if bad:
@@ -186,7 +186,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         for key, name, dash in _GAP_STYLES:
             ax2.plot(U, gaps(sel, key, ok), linestyle=dash, color=colour, lw=1.1, marker=marker,
                      ms=2.0)
-        ref = [r for r in reference or [] if r["series"] == label]
+        ref = [r for r in beside or [] if r["series"] == label]
         if ref:
             rmodel = ref[0]["model"]
             rU = xs(ref)
@@ -213,7 +213,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     ax.grid(True, alpha=0.3)
     h1, l1 = ax.get_legend_handles_labels()
     # the gap styles once, in black: the colours already name the series
-    models = [rows[0]["model"]] + ([reference[0]["model"]] if reference else [])
+    models = [rows[0]["model"]] + ([beside[0]["model"]] if beside else [])
     styles = [(Line2D([], [], color="k", lw=1.1 if m == models[0] else 0.6, linestyle=dash),
                f"gap h {name} ({m}{'' if m == models[0] else ', thin'})")
               for m in models for _, name, dash in _GAP_STYLES]

@@ -63,13 +63,12 @@ from ..case import Case
 from ..physics import closed_form as cf
 from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
-from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
-                                valley_shear_bound, wrap_average_linear_gap,
-                                wrap_average_loads)
 from ..errors import NoAdmissibleSolution
-from ..physics.validity import (THIN_FILM_RATIO, contact_overload, grooves_refused,
-                                slip_warning, thin_film_check, thin_film_message)
+from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
+                                wrap_average_linear_gap, wrap_average_loads)
+from ..physics.validity import grooves_refused, slip_warning, thin_film_check
 from ..result import Diagnostics, Fields, Result, Summary
+from .closed_refusal import NO_ANSWER, mu_bound, no_answer, no_answer_codes, no_answer_reason
 from .model_error import closed_form_errors
 from .options import ClosedFormOptions
 
@@ -79,26 +78,6 @@ __all__ = ["evaluate", "case_arrays", "solve", "solve_case", "solve_many", "no_a
 NAME = "closed-form"
 #: Points along the wrap in the fields of a single solve (for charts and VTU).
 N_FIELD_POINTS = 201
-#: Why the closed form has no answer, by the code :func:`evaluate` returns as ``no_answer``
-#: (0: an answer); the module text says what each means.
-NO_ANSWER = ("", "thin-film", "gap", "landed", "contact", "mu")
-def mu_bound(mu_cc, eta, U_s, sigma, p_bar, mean_free_path):
-    """The largest traction coefficient the closed form may state: the asperities' mu_cc
-    plus the most the air between them can add where the web rests on them,
-    :func:`~webfem.physics.friction.valley_shear_bound` eta U_s / sigma (about 2 eta U_s /
-    sigma for the base web), over p_bar = T_eff/R. Only the Couette shear eta U_s / (h + 2 a
-    lambda) at a resting gap h_c far below sigma goes further: the symptom of a contact law
-    near its limit (T/R close to E_b sigma/(2t)), not a traction. A film flying over the
-    whole wrap (h > 3 sigma) stays below the bound by itself (eta U_s / h < eta U_s /
-    (3 sigma)), whatever mu_cc.
-
-    >>> round(float(mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9)), 4)
-    0.3404
-    """
-    return mu_cc + (valley_shear_bound(sigma, mean_free_path) * eta * U_s
-                    / (sigma * p_bar))
-
-
 def case_arrays(cases) -> dict[str, np.ndarray]:
     """Stack cases into the keyword arrays :func:`evaluate` takes."""
     get = {
@@ -150,7 +129,7 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
                                       distribution=distribution)
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
     h_c = contact_gap(T / R, E_b, sigma, t, distribution)
-    code = _no_answer(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
+    code = no_answer_codes(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
                       mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path))
     return {"no_answer": code,
         "contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t, distribution),
@@ -162,96 +141,6 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
         "share_boundary": avg["share_boundary"], "share_mixed": avg["share_mixed"],
         "share_fluid": avg["share_fluid"], "regime_code": np.argmax(shares, axis=0),
     }
-
-
-def _no_answer(*, R, eps, h_in, h_out, h_c, mu, mu_max):
-    """The :data:`NO_ANSWER` code of each point (0: an answer), the first reason that
-    applies in the order of the module text; ``h_in`` and ``h_out`` are the unclamped Eq. 21
-    gaps at the wrap edges (h_out <= h_in: permeation only lowers the gap)."""
-    limit = THIN_FILM_RATIO * np.asarray(R, float)
-    mu = np.asarray(mu, float)
-    with np.errstate(invalid="ignore"):
-        reasons = [
-            np.asarray(R, float) * np.cbrt(eps) ** 2 > limit,              # thin-film
-            np.maximum(h_in, h_c) > limit,                                 # gap
-            h_in <= 0.0,                                                   # landed
-            (h_c <= 0.0) & (h_out <= 0.0),                                 # contact
-            ~np.isfinite(mu) | (mu > mu_max),                             # mu
-        ]
-    return np.select(reasons, list(range(1, len(reasons) + 1)), 0)
-
-
-def no_answer(result) -> str | None:
-    """Why the closed form has no answer at ``result``'s operating point (its
-    ``solver_message``), or None when it has one. A result of :func:`solve_many`, or of
-    :func:`solve_case` with ``raise_on_failure=False``, may carry no answer: ``converged``
-    is then False. A model choosing among others (auto) tests this before using it.
-
-    >>> from webfem import Case
-    >>> no_answer(solve(Case())) is None
-    True
-    >>> r = solve_many([Case().updated({"web.tension": 500.0})])[0]
-    >>> r["converged"], no_answer(r)[:34]
-    (False, 'h_c = -2.39e-06 m <= 0 where Eq. 2')
-    """
-    if result["converged"]:
-        return None
-    return result["solver_message"] or "no closed-form answer"
-
-
-def _no_answer_reason(code: int, case: Case, s: dict) -> str:
-    """The message of :data:`NO_ANSWER` code ``code`` for ``case`` (summary values ``s``):
-    what is wrong, the parameter and its value against its valid range, and what helps."""
-    R = case.roller.radius
-    limit = THIN_FILM_RATIO * R
-    reason = NO_ANSWER[code]
-    if reason == "thin-film":
-        return thin_film_message(case) or "the film is thicker than R/100"
-    if reason == "gap":
-        if s["h_c"] > limit:
-            w, f = case.web, case.friction
-            keys = (f"web.roughness = {w.roughness:g} m"
-                    + (f", roller.roughness = {case.roller.roughness:g} m, friction.roughness"
-                       " = composite" if f.roughness == "composite" else ""))
-            return (f"the contact gap h_c = {s['h_c']:.3g} m, where the asperities alone "
-                    f"carry T/R, is more than R/100 = {limit:.2g} m (roller.radius = {R:g} "
-                    f"m; valid: h_c < R/100): the roughness sigma = {case.sigma:.3g} m "
-                    f"({keys}) is far too coarse for a thin film on this roller; lower it")
-        return (f"Eq. 21's inlet gap h_inlet = {s['h_inlet']:.3g} m is more than R/100 = "
-                f"{limit:.2g} m (roller.radius = {R:g} m; lambda = {s['lambda']:.3g}, "
-                "web.width is narrow against the film's entry length): the thin-film model "
-                "does not hold; raise web.tension or lower the speeds")
-    if reason == "landed":
-        return (f"Eq. 21's gap is <= 0 over the whole wrap (h_inlet = {s['h_inlet']:.3g} m "
-                f"at U = {case.U:g} m/s): no film is left to describe; raise the speeds")
-    share = _landed_share(case, s)
-    if reason == "contact":
-        return (f"h_c = {s['h_c']:.3g} m <= 0 where Eq. 21 lands the web (h <= 0 on "
-                f"{100 * share:.3g} % of the wrap): "
-                + (contact_overload(case) or "asperity contact cannot carry T/R at h = 0"))
-    if not np.isfinite(s["mu"]):
-        return ("the wrap-averaged mu is not finite: the Eq. 21 gap closes where contact "
-                "cannot carry T/R; " + (contact_overload(case) or "use fe1d or fe2d"))
-    mu_cc = case.friction.mu_cc
-    top = mu_bound(mu_cc, case.air.viscosity, case.U_slide, case.sigma, case.p_bar,
-                   case.air.mean_free_path)
-    peak = valley_shear_bound(case.sigma, case.air.mean_free_path)
-    return (f"the wrap-averaged mu = {s['mu']:.3g} is above what the asperities (friction."
-            f"mu_cc = {mu_cc:g}) and the air between them (at most about "
-            f"{peak:.2g} eta U_s / sigma) can carry: valid mu <= {top:.3g}; "
-            f"the Couette shear over Eq. 21's resting gap h_c = {s['h_c']:.3g} m, well below "
-            f"the roughness sigma = {case.sigma:.3g} m (U_s = {case.U_slide:g} m/s), is the "
-            "contact law near its limit, not a traction: lower web.tension or raise "
-            "web.modulus_thickness or web.roughness")
-
-
-def _landed_share(case: Case, s: dict) -> float:
-    """Share of the wrap where the unclamped Eq. 21 gap is <= 0."""
-    h_in = s["h_inlet"]
-    drop = 2.0 * case.roller.radius * s["kappa"]
-    if drop <= 0.0:
-        return float(h_in <= 0.0)
-    return float(np.clip((drop - h_in) / drop, 0.0, 1.0))
 
 
 def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
@@ -326,7 +215,7 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Sum
     s["warnings"] = _warnings(case, s)
     if code:
         # the reason reads from the traction at the stated speeds, which it judged
-        s["solver_message"] = _no_answer_reason(
+        s["solver_message"] = no_answer_reason(
             code, case, {**s, "mu": s["mu_film"] if s["mu_film"] is not None else s["mu"]})
         s["warnings"].append("no closed-form answer: " + s["solver_message"])
     else:

@@ -17,7 +17,7 @@ from ..fem import forms
 from ..fem.hermite import Composite, HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
 from ..fem.continuation import FIRST_TRY, eshel_elrod
-from ..fem.newton import newton, norm2
+from ..fem.newton import PatternSolver, newton, norm2
 from ..fem.outcome import SolveInfo
 from ..fem.picard import frozen_coefficient_picard, picard
 from ..fem.scaling import FoilParameters
@@ -68,6 +68,8 @@ class FoilBearing1D:
         self._probe_p = LineProbes(self.basis, component=0)
         self._probe_w = LineProbes(self.basis, component=1)
         self.system = LineSystem(self.basis, self.sink_basis if order == 1 else None)
+        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering)
+        self.solver = PatternSolver()
 
     @property
     def n_dofs(self) -> int:
@@ -137,7 +139,8 @@ class FoilBearing1D:
     def newton(self, u0, prm, tol, max_iter, rows=None):
         """Damped Newton on the ``rows`` (default: every free unknown)."""
         return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
-                      self.free if rows is None else rows, tol=tol, max_iter=max_iter)
+                      self.free if rows is None else rows, tol=tol, max_iter=max_iter,
+                      solver=self.solver)
 
     def consistent_pressure(self, u, prm, tol=1e-8):
         """Film pressure for the web as it is (a film-only solve): without it a cold

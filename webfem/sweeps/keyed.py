@@ -24,7 +24,8 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from .runner import SweepInterrupted
-from .store import Store, SweepLock
+from .lock import SweepLock
+from .store import Store
 from .table import typed
 
 __all__ = ["run_points", "exact_key"]

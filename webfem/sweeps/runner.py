@@ -25,7 +25,8 @@ from ..api import sweep as sweep_in_memory
 from ..errors import InputError
 from ..models.registry import make_options
 from ..result import Result
-from .store import Store, SweepLock, point_key, signature
+from .lock import SweepLock
+from .store import Store, point_key, signature
 from .table import failure_row, sweep_rows, typed
 from .workers import MAX_WORKERS, Dask, PointError, Processes, solve_path
 
