@@ -1,10 +1,11 @@
 """The closed form says when it has no answer (issue 20, item 5).
 
-A wrap landed from edge to edge, h_c <= 0 where Eq. 21 lands the web, mu beyond what the
-asperities and the air between them can carry, a gap above R/100 or a film thicker than
-R/100: one solve refuses with NoAdmissibleSolution (exit 2) naming the reason; the vectorised
-path (sweeps) keeps the point with converged = False and the same reason; auto never
-returns it. A partly landed wrap stays an answer (the paper's boundary lubrication).
+A wrap landed from edge to edge, mu beyond what the asperities and the air between them can
+carry, a gap above R/100 or a film thicker than R/100: one solve refuses with
+NoAdmissibleSolution (exit 2) naming the reason; the vectorised path (sweeps) keeps the point
+with converged = False and the same reason; auto never returns it. A partly landed wrap stays
+an answer (the paper's boundary lubrication), and so, since the contact law continues past
+full asperity compression (issue 22), does a web resting on the roller with h_c <= 0.
 """
 
 import numpy as np
@@ -26,46 +27,47 @@ from conftest import BASE
 def code(case: Case) -> str:
     """The NO_ANSWER name of ``case`` from the vectorised evaluation."""
     values = closed.evaluate(**closed.case_arrays([case]), variant=case.friction_variant,
-                             distribution=case.friction.distribution)
+                             distribution=case.friction.distribution,
+                             roughness=case.roughness_flow_model == "mean-gap")
     return closed.NO_ANSWER[int(values["no_answer"][0])]
 
 
 # -- each reason, on the single solve and the vectorised path --------------------------------
-def test_contact_overload_where_the_web_lands_is_refused(capsys):
+def test_a_web_above_what_the_asperities_carry_rests_on_the_roller(capsys):
     """T = 500 N/m on R = 55 mm: T/R = 9091 Pa against E_b sigma/(2t) = 175e3 * 4e-6 / 140e-6
-    = 5000 Pa at h = 0, so h_c = sigma ln(5000/9091) = -2.39 um; Eq. 21 lands 96 % of the
-    wrap. Today's answer (mu 0.456, above mu_cc) is no answer: exit 2, naming h_c, the
-    wrap pressure, the limit and the key to change."""
-    assert main(["solve", "base", "--model", "closed-form", "--set", "web.tension=500"]) == 2
-    err = capsys.readouterr().err
-    assert "Traceback" not in err
-    assert "h_c = -2.39e-06 m <= 0" in err and "9091 Pa" in err and "5000 Pa" in err
-    assert "web.tension below 275 N/m" in err
-    assert code(BASE.updated({"web.tension": 500.0})) == "contact"
+    = 5000 Pa at h = 0. Refused before (h_c <= 0 where Eq. 21 lands the web, mu 0.456 above
+    mu_cc); on the continued contact law h_c solves (E_b/t)(-h + (sigma/2) exp(h/sigma)) =
+    T/R (3.636 um of compression): h_c = -2.59 um (2.59 + 2 exp(-0.647) = 3.637), the web
+    resting with its surface compressed, mu near mu_c = 0.296."""
+    assert main(["solve", "base", "--model", "closed-form", "--set", "web.tension=500",
+                 "--json"]) == 0
+    import json
+    data = json.loads(capsys.readouterr().out)
+    assert data["resting"] and data["h_c"] == pytest.approx(-2.5895e-6, rel=1e-4)
+    assert data["compression"] == pytest.approx(-data["h_min"]) and data["h_min"] <= data["h_c"] + 1e-15
+    assert 0.29 < data["mu"] < 0.31
+    assert code(BASE.updated({"web.tension": 500.0})) == ""
 
 
-def test_contact_overload_at_crawling_speed_is_refused_by_auto_too(capsys):
+def test_a_resting_web_at_crawling_speed_is_answered_by_auto_too():
     """U_r = 1e-5 m/s, T = 300 N/m: the wrap is 6820 entry lengths long (beyond the FE
-    models), h_c = -0.35 um and Eq. 21 lands the whole wrap but 2 nm at the inlet. auto
-    answered with the closed form's gap 0 and mu 0; now it refuses, with the reason."""
-    argv = ["solve", "base", "--set", "roller.speed=1e-5", "--set", "web.tension=300"]
-    assert main(argv) == 2
-    assert main(argv + ["--model", "closed-form"]) == 2
-    err = capsys.readouterr().err
-    assert err.count("h_c = -3.48e-07 m <= 0 where Eq. 21 lands the web") == 2
-    with pytest.raises(NoAdmissibleSolution, match="no admissible closed-form answer"):
-        webfem.solve(BASE.updated({"roller.speed": 1e-5, "web.tension": 300.0}),
-                     model="auto")
+    models), h_c = -0.35 um; auto answered with the closed form's gap 0 and mu 0 (issue 20),
+    then refused; now the web rests on the roller, boundary lubrication: mu = mu_c."""
+    r = webfem.solve(BASE.updated({"roller.speed": 1e-5, "web.tension": 300.0}))
+    assert r["model_used"] == "closed-form" and r["resting"]
+    assert r["h_min"] == pytest.approx(r["h_c"]) and r["h_c"] == pytest.approx(-3.49e-7, rel=2e-3)
+    mu_c = 2.0 / np.pi * 0.3 * np.arctan(1e-5 / 0.4)
+    assert r["mu"] == pytest.approx(mu_c, rel=0.05)
 
 
 def test_h_c_below_zero_is_an_answer_while_the_film_flies():
     """An impermeable web at T = 400 N/m: h_c = -1.5 um, but Eq. 21's gap (8.6 um) is
-    positive over the whole wrap, so the film carries T/R and nothing needs the contact
-    law (fe1d agrees: mu 0.019 against 0.030, both mixed)."""
-    r = webfem.solve(BASE.updated({"web.tension": 400.0, "web.permeability": 0.0}), model="closed-form")
-    assert r["converged"] and r["h_c"] < 0.0 < r["h_min"]
+    positive over the whole wrap, so the film carries T/R (fe1d agrees: mu 0.019 against
+    0.030, both mixed)."""
+    r = webfem.solve(BASE.updated({"web.tension": 400.0, "web.permeability": 0.0}),
+                     model="closed-form")
+    assert r["converged"] and r["h_c"] < 0.0 < r["h_min"] and not r["resting"]
     assert closed.no_answer(r) is None
-    assert any("the film carries it here" in w for w in r["warnings"])
 
 
 def test_mu_beyond_asperities_and_valley_air_is_refused():
@@ -73,8 +75,11 @@ def test_mu_beyond_asperities_and_valley_air_is_refused():
     roughness, and the Couette shear eta U_s/(h_c + 2 a lambda) there lifts mu to 0.417,
     above mu_cc + c eta U_s / (sigma T/R) = 0.3 + 2.029 * 1.81e-5 * 20 / (4e-6 * 4545) =
     0.340, with c = 0.5 ln(1 + 4e-6 / (2 * 65e-9)) + 0.3 = 2.029 bounding the shear of the
-    air between the asperities (its peak, by quadrature: 1.55 eta U_s / sigma)."""
-    case = BASE.updated({"web.tension": 250.0})
+    air between the asperities (its peak, by quadrature: 1.55 eta U_s / sigma). The smooth
+    film's shear is what air.roughness_flow = "none" keeps; the default shears the air only
+    where it wets the roller (mu 0.305 here, an answer)."""
+    case = BASE.updated({"web.tension": 250.0, "air.roughness_flow": "none"})
+    assert code(BASE.updated({"web.tension": 250.0})) == ""
     assert closed.mu_bound(0.3, 1.81e-5, 20.0, 4e-6, 250.0 / 0.055, 65e-9) == pytest.approx(
         0.3 + 2.0293 * 1.81e-5 * 20.0 / (4e-6 * 250.0 / 0.055), rel=1e-4)
     assert code(case) == "mu"
@@ -160,7 +165,7 @@ def test_partly_landed_low_speed_wrap_is_an_answer():
     the web rests on its asperities: boundary lubrication, mu = (2/pi) 0.3 atan(0.5/0.4) =
     0.1714 plus the air's shear over h_c, as in the paper and the FE models (0.17)."""
     r = webfem.solve(BASE.updated({"roller.speed": 0.5}), model="closed-form")
-    assert r["converged"] and r["h_outlet"] == 0.0 and r["regime"] == "boundary"
+    assert r["converged"] and r["h_outlet"] == r["h_c"] and r["regime"] == "boundary"
     assert r["mu"] == pytest.approx(0.1714, abs=0.005)
 
 
@@ -177,6 +182,7 @@ def test_base_sweep_answers_at_every_speed():
 # -- one rule for both paths, and for auto -----------------------------------------------------
 CASES = [BASE.updated(v) for v in (
     {}, {"roller.speed": 0.5}, {"web.tension": 500.0}, {"web.tension": 250.0},
+    {"web.tension": 250.0, "air.roughness_flow": "none"},
     {"web.tension": 0.01}, {"web.tension": 120.0, "roller.speed": 9.0},
     {"web.tension": 400.0, "web.permeability": 0.0},
     {"web.tension": 300.0, "friction.variant": "paper"},
@@ -201,31 +207,33 @@ def test_vectorised_and_single_solves_agree():
             assert any(w.startswith("no closed-form answer: ") for w in r["warnings"])
         else:
             assert r["converged"] and closed.no_answer(r) is None
-    assert refused == 4
+    # T = 0.01 (thin film), 250 without the roughness flow (mu), 300 with the paper's
+    # friction (mu not finite): 500, and 250 with the roughness flow, now rest (issue 22)
+    assert refused == 3
 
 
 def test_sweep_keeps_no_answer_points_marked(tmp_path, capsys):
-    """A closed-form sweep of a less permeable web (k = 5e-16 m^2) at T = 300 N/m (h_c =
-    -0.35 um): Eq. 21 lands it at 0.5 and 5 m/s, not at 60 m/s (h_outlet = 15.6 um). Every
-    point is written; those without an answer are not converged, with the reason in
-    solver_message; exit 3 says some points have none."""
+    """A closed-form sweep at T = 250 N/m with the smooth film's shear (air.roughness_flow =
+    none): at 20 m/s Eq. 21 rests the web at h_c = 0.38 um, where eta U_s/(h_c + 2 a lambda)
+    lifts mu to 0.417, beyond what asperities and air can carry (no answer); at 60 m/s the
+    film flies. Every point is written; the one without an answer is not converged, with the
+    reason in solver_message; exit 3 says some points have none."""
     case = tmp_path / "t.toml"
-    case.write_text("[web]\ntension = 300.0\npermeability = 5e-16\n[sweep]\n"
-                    "parameter = 'roller.speed'\nvalues = [0.5, 5.0, 60.0]\n")
+    case.write_text("[web]\ntension = 250.0\n[air]\nroughness_flow = 'none'\n[sweep]\n"
+                    "parameter = 'roller.speed'\nvalues = [20.0, 60.0]\n")
     assert main(["sweep", str(case), "--model", "closed-form", "--out", str(tmp_path),
                  "--quiet"]) == 3
     err = capsys.readouterr().err
     assert "Traceback" not in err and "no converged, admissible answer" in err
     rows = typed(read_table(tmp_path / "t_closed-form.csv").rows)
-    assert [r["converged"] for r in rows] == [False, False, True]
-    assert all("h_c = " in r["solver_message"] and "web.tension" in r["solver_message"]
-               for r in rows[:2])
+    assert [r["converged"] for r in rows] == [False, True]
+    assert "mu = 0.417 is above" in rows[0]["solver_message"]
 
 
 def test_json_of_a_refusal_is_no_answer(capsys):
     """--json prints no answer on stdout for a refused point (no JSON a script could take for
     one); the message goes to stderr."""
     assert main(["solve", "base", "--model", "closed-form", "--json", "--set",
-                 "web.tension=500"]) == 2
+                 "web.tension=250", "--set", "air.roughness_flow=none"]) == 2
     out, err = capsys.readouterr()
     assert out == "" and "no admissible closed-form answer" in err and "Traceback" not in err

@@ -19,7 +19,8 @@ def test_effects_table_switches_each_effect_off(idler):
     case = idler
     table = effects_table(case, "fe1d")
     assert [r.effect for r in table.rows] == ["all included", "inertia", "bending", "slip",
-                                              "isothermal-permeation", "load-friction"]
+                                              "isothermal-permeation", "load-friction",
+                                              "roughness-flow"]
     direct = webfem.solve(case.updated(SWITCH_OFF["inertia"]), model="fe1d")
     row = table.rows[1]
     # two solves of one case agree to round-off (the linear solver reuses orderings)
@@ -33,7 +34,8 @@ def test_effects_table_switches_each_effect_off(idler):
 def test_effects_cli_prints_the_table(capsys):
     assert main(["effects", "cases/base.toml", "--model", "fe1d", "--quiet"]) == 0
     out = capsys.readouterr().out
-    for effect in ("bending", "slip", "isothermal-permeation", "load-friction"):
+    for effect in ("bending", "slip", "isothermal-permeation", "load-friction",
+                   "roughness-flow"):
         assert effect in out
     assert main(["effects", "cases/base.toml", "--model", "closed-form", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)

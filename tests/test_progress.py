@@ -70,11 +70,25 @@ def test_the_fe_driver_names_its_stages():
     assert any(s[0].startswith("fe1d refinement round 1, ") for s in stages)
     assert all(s[0].startswith(("fe1d newton, ", "fe1d refinement round ",
                                 "fe1d safe start", "fe1d error estimate")) for s in stages)
-    # the 1-D model's continuation, when it runs, inside the solve it rescues; on the base
-    # case the direct cold start ends on an inadmissible branch and the safe start runs
-    assert all(inner.startswith("Eshel-Elrod continuation, s = ") for s in stages
-               for inner in s[1:])
+    assert any(s[0] == "fe1d error estimate on the coarser mesh" for s in stages)
+
+
+def test_the_continuation_names_its_steps_inside_the_solve_it_serves():
+    """The 1-D model's continuation (its safe start) reports each step inside its stage."""
+    from webfem.fem.scaling import FoilParameters
+    from webfem.models import fe1d
+    from webfem.progress import stage
+
+    case = webfem.Case()
+    prm = FoilParameters.from_case(case)
+    problem = fe1d.LINE.start(case, prm, fe1d.FE1DOptions(), None).problem
+    seen = []
+    with reporting(seen.append), stage("fe1d safe start"):
+        problem.solve_continued(prm)
+    stages = list(dict.fromkeys(s.stage for s in seen))
     assert ("fe1d safe start", "Eshel-Elrod continuation, s = 0") in stages
+    assert all(len(s) == 1 or s[1].startswith("Eshel-Elrod continuation, s = ")
+               for s in stages)
 
 
 def test_fe2d_reports_its_1d_start_inside_its_own_stage():

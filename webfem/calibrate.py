@@ -318,7 +318,8 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
             arr = case_arrays([c.updated({"web.roughness": sigma}) for c in cases])
             arr.update(mu_cc=mu_cc, C=C)
             mu = evaluate(**arr, variant=case.friction_variant,
-                          distribution=case.friction.distribution)["mu"]
+                          distribution=case.friction.distribution,
+                          roughness=case.roughness_flow_model == "mean-gap")["mu"]
         else:
             mu = np.empty(len(cases))
             for i, (c, (h, w, resting, p, dpdx)) in enumerate(zip(cases,

@@ -204,6 +204,12 @@ class Case:
         return "none" if self.paper_physics else self.air.slip
 
     @property
+    def roughness_flow_model(self) -> str:
+        """Air through the roughness: ``air.roughness_flow``, or "none" with the paper's
+        physics."""
+        return "none" if self.paper_physics else self.air.roughness_flow
+
+    @property
     def permeation_model(self) -> str:
         """Darcy sink used: ``web.permeation``, or "paper" with the paper's physics."""
         return "paper" if self.paper_physics else self.web.permeation

@@ -15,8 +15,8 @@ def error_text(s) -> str | None:
     if all(v is None for v in values.values()):
         return None
     parts = [f"{_NAMES[q]} {v:.1g}" for q, v in values.items() if v is not None]
-    return ", ".join(parts) + " (relative; mu against max(|mu|, 0.1 mu_cc), the contact " \
-        "share absolute)"
+    return ", ".join(parts) + (" (gaps against max(h, sigma), mu against max(|mu|, 0.1 mu_cc), "
+                               "the contact share absolute)")
 
 
 def verdict(s) -> str:

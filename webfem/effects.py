@@ -9,7 +9,7 @@ Examples
 >>> from webfem import Case
 >>> table = effects_table(Case().updated({"roller.speed": 40.0}), "closed-form")
 >>> [row.effect for row in table.rows]
-['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction']
+['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow']
 >>> table.not_carried                  # the closed form cannot carry these
 ('bending', 'slip', 'isothermal-permeation')
 

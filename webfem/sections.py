@@ -261,7 +261,8 @@ class Wrap(Section):
 
 @dataclass(frozen=True)
 class Air(Section):
-    """Air ``viscosity`` eta [Pa s] and ``ambient_pressure`` p_a [Pa]."""
+    """Air ``viscosity`` eta [Pa s] and ``ambient_pressure`` p_a [Pa], its ``mean_free_path``
+    [m], ``slip`` flow and ``roughness_flow`` (how the air passes the roughness)."""
 
     _name = "air"
     viscosity: float = field(default=1.81e-5, metadata=_num("Pa s", 0.0, doc="viscosity eta",
@@ -273,6 +274,10 @@ class Air(Section):
         real=(None, 1e-4)))
     slip: str = field(default="first-order", metadata=_choice(
         "first-order", "none", doc="slip flow: Burgdorfer's first order (a = 1) or none"))
+    roughness_flow: str = field(default="mean-gap", metadata=_choice(
+        "mean-gap", "none", doc="air through the roughness: the flow gap E[(h - z)+] and the "
+        "mean Couette shear over the wetted area (mean-gap), or h with a numerical floor and "
+        "eta U_s / (h + 2 a lambda) (none)"))
 
 
 @dataclass(frozen=True)

@@ -156,8 +156,13 @@ class Summary(ReadOnlyMapping):
     land_fraction: float | None = None
     contact_share_lands: float | None = None
     groove_domain: str | None = None
-    #: The error of what the result states, estimated per quantity: relative for the gaps,
-    #: relative to max(|mu|, 0.1 mu_cc) for mu, absolute for the contact share (FE models:
+    #: A web resting on the roller: True where the web's mean surface plane lies below the
+    #: roller's crest somewhere (h < 0: its asperities and surface layer compressed), and the
+    #: largest compression -h [m] (0 when not resting).
+    resting: bool | None = None
+    compression: float | None = None
+    #: The error of what the result states, estimated per quantity: the gaps' relative to the
+    #: larger of the gap and the roughness sigma, mu's relative to max(|mu|, 0.1 mu_cc), absolute for the contact share (FE models:
     #: the mesh error from two meshes, :mod:`webfem.models.mesh_error`; the closed form and
     #: fe1d also their model error against fe2d), and how the estimate was obtained.
     error_h_center: float | None = None

@@ -11,7 +11,7 @@ Examples
 >>> from webfem import Case
 >>> out = traction_loss_speed(Case(), 0.1, "closed-form")
 >>> round(out.speed, 1), out.model, out["speed"] == out.speed
-(27.7, 'closed-form', True)
+(28.2, 'closed-form', True)
 """
 
 from __future__ import annotations

@@ -14,8 +14,9 @@ Darcy sink through the web (physics.md, divided by p_a):
 
 weak, with test function q: int (D P_X - C) q_X + D P_Z q_Z + K (1 + ds P) P q, where
 D = (1 + d P) H_f^3 + s H_f^2 (Poiseuille conductance with slip) and C = (1 + d P) H_f
-(Couette flux); H_f is the film's gap floored smoothly (:func:`film_gap`: where the web rests
-on its asperities air still seeps through the roughness). d = T / (R p_a) (0: the
+(Couette flux); H_f is the flow gap (:func:`flow_gap`): the mean local air gap over the
+asperity heights E[(H - z)+] (air still flows through the roughness where the web rests on
+it), or, with the roughness flow switched off, H floored smoothly (:func:`film_gap`). d = T / (R p_a) (0: the
 incompressible limit), K = 12 k / (R t eps^(4/3)), s = 6 a lambda_a / (R eps^(2/3)), ds = d/2
 for isothermal Darcy flow through the web, d for the paper's sink. P = 0 on the ends and the
 web edges; dP/dZ = 0 on symmetry lines. In 1-D the Z terms are absent.
@@ -42,12 +43,13 @@ assembly are both generated from the declarations.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erfc
 
+from ..physics.roughness import mean_excess, mean_gap, wet_share
 from .weakform import Block, Term, WeakForm
 
 __all__ = ["FILM", "SINK", "WEB", "COUPLING", "film_coefficients", "web_coefficients",
-           "coupling_coefficients", "film_gap", "contact_law", "departure", "in_wrap"]
+           "coupling_coefficients", "flow_gap", "film_gap", "contact_law", "departure",
+           "in_wrap"]
 
 #: Reynolds' flux terms and their derivatives in P and in the web (dH/dW = 1).
 FILM = WeakForm("film", ("p", "w"),
@@ -91,18 +93,29 @@ def film_gap(H, floor):
 
 
 def contact_law(H, prm):
-    """Scaled contact pressure Pc(H) = p_c R/T and stiffness -dPc/dH (Eq. 10 or its Gaussian
-    counterpart): ``prm['law']`` 0 exponential, Pc = c exp(-H/S); 1 Gaussian,
-    Pc = c (S/sqrt(2 pi) exp(-H^2/(2 S^2)) - H/2 erfc(H/(S sqrt 2))). ``prm['contact']`` 0
+    """Scaled contact pressure Pc(H) = p_c R/T and stiffness -dPc/dH: (E_b/t) E[(z - H)+]
+    scaled (:func:`webfem.physics.roughness.mean_excess`), Eq. 10 for the exponential
+    heights (``prm['law']`` 0: Pc = c exp(-H/S) for H >= 0) and its Gaussian counterpart
+    (``law`` 1), both continued past full asperity compression (H < 0: the web rests with its
+    surface compressed; exponential: Pc = c (exp(H/S) - 2 H/S)). ``prm['contact']`` 0
     switches contact off."""
     on, c, S = prm["contact"], prm["c"], prm["S"]
-    if prm.get("law", 0) == 1:
-        e = erfc(H / (S * np.sqrt(2.0)))
-        Pc = on * c * (S / np.sqrt(2.0 * np.pi) * np.exp(-0.5 * (H / S) ** 2) - 0.5 * H * e)
-        return Pc, on * c * 0.5 * e
+    law = "gaussian" if prm.get("law", 0) == 1 else "exponential"
+    # exponential: c = E_b sigma R / (2 t T), so (E_b/t) (R/T) h_scale = 2c/S; Gaussian: c
+    k = on * (c if law == "gaussian" else 2.0 * c / S)
     with np.errstate(over="ignore"):   # a wild line-search trial: inf, then rejected
-        Pc = on * c * np.exp(-H / S)
-    return Pc, Pc / S
+        return k * mean_excess(H, S, law), k * (1.0 - wet_share(H, S, law))
+
+
+def flow_gap(H, prm):
+    """The gap the air flows through and its derivative in H: with ``prm['flow']`` 1 the
+    flow gap E[(H - z)+] over the asperity heights (:func:`webfem.physics.roughness.
+    mean_gap`: positive by construction, H to within 2.5 % of S above 3 S), else H with the
+    numerical floor of :func:`film_gap`."""
+    if prm.get("flow", 0):
+        law = "gaussian" if prm.get("law", 0) == 1 else "exponential"
+        return mean_gap(H, prm["S"], law), wet_share(H, prm["S"], law)
+    return film_gap(H, prm["floor"])
 
 
 def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
@@ -112,7 +125,7 @@ def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     Jacobian: rho = 1 + d P and H^3 frozen at the state."""
     d, K, s = prm["d"], prm["K"], prm.get("slip", 0.0)
     ds = prm.get("ds", d)
-    Hf, above = film_gap(H, prm["floor"])
+    Hf, above = flow_gap(H, prm)
     rho, rho_s = 1.0 + d * P, 1.0 + ds * P
     Hf2 = Hf**2
     Hf3 = Hf2 * Hf

@@ -35,7 +35,8 @@ class FoilParameters:
     below which Reynolds sees a smooth floor (from_case takes it as a fraction of sigma);
     H_c: the scaled gap at which contact alone carries T/R; land: the land fraction a/p_g of
     a grooved roller (1 smooth): asperity contact acts on the lands only, so the web sees
-    land Pc(H) (:func:`webfem.fem.forms.web_coefficients`).
+    land Pc(H) (:func:`webfem.fem.forms.web_coefficients`); flow 1: the air flows through the
+    flow gap E[(H - z)+] instead of H with the floor (:func:`webfem.fem.forms.flow_gap`).
     """
 
     beta: float
@@ -51,6 +52,7 @@ class FoilParameters:
     ds: float | None = None
     slip: float = 0.0
     land: float = 1.0
+    flow: int = 0
 
     def __post_init__(self):
         if self.ds is None:     # the paper's sink unless told otherwise
@@ -80,14 +82,14 @@ class FoilParameters:
             c=c, S=case.sigma / case.h_scale, contact=1.0 if contact else 0.0,
             floor=floor * case.sigma / case.h_scale,
             law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
-            land=case.land_fraction,
+            land=case.land_fraction, flow=1 if case.roughness_flow_model == "mean-gap" else 0,
         )
 
     def as_form_args(self) -> dict:
         """The keyword arguments the forms' coefficient functions take."""
         return dict(beta=self.beta, K=self.K, d=self.d, ds=self.ds, slip=self.slip, Dn=self.Dn,
                     c=self.c, S=self.S, contact=self.contact, floor=self.floor, law=self.law,
-                    land=self.land)
+                    land=self.land, flow=self.flow)
 
     def homotopy(self, s: float) -> "FoilParameters":
         """Permeation, compressibility and bending scaled by ``s``: s = 0 is the Eshel-Elrod

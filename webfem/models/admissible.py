@@ -1,5 +1,12 @@
 """When a converged state is an answer: the admissibility test, and the input error for a case
-that admits no admissible solution at all.
+whose converged answer on a fine mesh is still not admissible.
+
+With asperity contact (the default), the web may rest on the roller with its surface
+compressed: a negative gap h, the web's mean surface plane below the roller's crest, is
+admissible while the compression stays below the web's thickness (physics.md, "Webs that
+rest on the roller"; the contact law carries any load, so every tension has an
+equilibrium). Without contact, a gap <= 0 is the web through the roller. Either way the
+absolute film pressure must stay positive.
 """
 
 from __future__ import annotations
@@ -8,26 +15,34 @@ import numpy as np
 
 from ..case import Case
 from ..errors import NoAdmissibleSolution
-from ..fem import forms
 from ..fem.scaling import FoilParameters
-from ..physics.validity import contact_overload
 from .refine import minimum
 
-__all__ = ["admissibility", "no_admissible_solution"]
+__all__ = ["admissibility", "no_admissible_solution", "compression_limit"]
+
+
+def compression_limit(case: Case, prm: FoilParameters) -> float:
+    """The lowest admissible gap [m]: minus the web's thickness with contact (its surface
+    cannot be compressed through the web), 0 without."""
+    return -case.web.thickness if prm.contact else 0.0
 
 
 def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
-    """Why a converged state is not an answer, or None when it is admissible: the gap must
-    be positive everywhere in the solved domain (with contact the web rests on its
-    asperities, never through them) and the absolute film pressure positive."""
+    """Why a converged state is not an answer, or None when it is admissible: the gap above
+    :func:`compression_limit` everywhere in the solved domain, finite, and the absolute film
+    pressure positive."""
     X = problem.X
     H = problem.gap(u, prm, X)
     if not np.all(np.isfinite(H)):
         return "the gap is not finite"
     Hmin, Xmin = minimum(problem, u, prm)
-    if Hmin <= 0.0:
-        return (f"the gap reaches {Hmin * case.h_scale:.3g} m <= 0 at x = "
-                f"{Xmin * case.x_scale:.3g} m")
+    h_min, limit = Hmin * case.h_scale, compression_limit(case, prm)
+    if h_min <= limit:
+        where = f"at x = {Xmin * case.x_scale:.3g} m"
+        if prm.contact:
+            return (f"the web's surface is compressed by {-h_min:.3g} m {where}, through its "
+                    f"thickness t = {case.web.thickness:g} m")
+        return f"the gap reaches {h_min:.3g} m <= 0 {where} (asperity contact is off)"
     p_abs = case.air.ambient_pressure + problem.pressure(u, X) * case.p_bar
     if np.min(p_abs) <= 0.0:
         return f"the absolute film pressure reaches {np.min(p_abs):.3g} Pa <= 0"
@@ -35,32 +50,22 @@ def admissibility(case: Case, problem, u, prm: FoilParameters) -> str | None:
 
 
 def no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=None,
-                            u=None) -> None:
-    """An input error when the case admits no solution with a positive gap: the web lands
-    and the contact law cannot carry T/R at any h >= 0, or (``problem`` and ``u`` given: a
-    mesh-converged state) the web is pressed through its asperities somewhere because the
-    load there exceeds what contact carries at h = 0."""
-    overload = contact_overload(case) if prm.contact else None
-    if overload:
-        raise NoAdmissibleSolution(f"no admissible solution: the web lands ({why}) and "
-                                   f"{overload}")
+                           u=None) -> None:
+    """The input error for a case whose state, converged on a fine mesh (``problem`` and
+    ``u`` given), is still not admissible: the web compressed through its thickness, so the
+    contact law's linear spring base no longer describes it (a web much softer across its
+    thickness than the wrap pressure). Without ``problem`` (a coarse mesh): nothing to say
+    yet, the driver tries finer meshes."""
     if problem is None or not prm.contact:
         return
     Hmin, Xmin = minimum(problem, u, prm)
-    if Hmin > 0.0:
+    h_min = Hmin * case.h_scale
+    if h_min > compression_limit(case, prm):
         return
     w = case.web
-    p0 = prm.c * case.p_bar if prm.law == 0 else float(
-        forms.contact_law(np.array([0.0]), prm.as_form_args())[0][0] * case.p_bar)
-    suction = float(np.min(problem.pressure(u, problem.X))) * case.p_bar
-    cause = (f"the film's suction ({-suction:.3g} Pa below ambient where the web lifts off) "
-             "pulls it" if suction < -case.p_bar else "the web is pressed")
-    bend = (f" with bending stiffness D = {case.bending_used:.3g} N m"
-            if case.bending_used > 0 else "")
     raise NoAdmissibleSolution(
-        f"no admissible solution: {cause} through its asperities at x = "
-        f"{Xmin * case.x_scale:.4g} m{bend}: the contact pressure needed exceeds what the "
-        f"{case.friction.distribution} contact law carries at h = 0 ({p0:.4g} Pa, E_b sigma/"
-        f"(2t) for the exponential law); a stiffer or rougher web (web.modulus_thickness = "
-        f"{w.modulus_thickness:g} Pa, web.roughness = {w.roughness:g} m) or a lower "
-        f"web.tension keeps it on its asperities")
+        f"no admissible solution: the wrap pressure T_eff/R = {case.p_bar:.4g} Pa would "
+        f"compress the web's surface by {-h_min:.3g} m at x = {Xmin * case.x_scale:.4g} m, "
+        f"through its thickness web.thickness = {w.thickness:g} m (thickness-direction "
+        f"modulus web.modulus_thickness = {w.modulus_thickness:g} Pa): the asperity contact "
+        "law does not hold there; a stiffer web or a lower web.tension is within it")

@@ -19,10 +19,6 @@ h(x) from h_inlet down to h_outlet, in this order:
     its asperities, is above R/100 (e.g. asperities a metre tall);
 ``landed``
     Eq. 21's h <= 0 over the whole wrap, from edge to edge: no film is left to speak of;
-``contact``
-    h_c <= 0 (T_eff/R above what asperity contact carries at h = 0) where Eq. 21 lands the
-    web (h <= 0 on part of the wrap): nothing holds the web up there. With the film flying
-    over the whole wrap h_c <= 0 does not matter (the film carries T/R) and the answer stands;
 ``mu``
     the wrap-averaged mu is not finite, or above mu_cc by more than the air between the
     asperities can add (:func:`mu_bound`: mu_cc + c eta U_s / (sigma T_eff/R), c = 2.03
@@ -34,10 +30,15 @@ h(x) from h_inlet down to h_outlet, in this order:
     A mu a little above mu_cc is an answer: boundary friction near mu_cc plus the real drag
     of the air (the base web at T = 120 N/m and 9 m/s: 0.301).
 
-A partly landed wrap is an answer (the paper's): where Eq. 21 puts h <= 0 the web rests on
+A partly landed wrap is an answer (the paper's): where Eq. 21 puts h <= h_c the web rests on
 its asperities, boundary lubrication with mu = (2/pi) mu_cc atan(U_s/C). So the base case
 swept down to 0.5 m/s keeps its boundary-lubrication mu (0.17 there) though Eq. 21 lands all
-but the first 0.2 % of the wrap.
+but the first 0.2 % of the wrap. With the friction from the loads (every effect, the
+default) the stated gaps are those of the resting web there, max(h_Eq21, h_c), as the FE
+models find them; h_c < 0 where T_eff/R exceeds what the asperities carry at h = 0 (E_b sigma
+/ (2 t)): the web rests with its surface compressed (``resting``, ``compression``;
+physics.md, "Webs that rest on the roller"). With the paper's physics the gaps are Eq. 21's,
+clamped at 0 as printed.
 
 Where there is no answer, :func:`solve_case` raises
 :class:`~webfem.errors.NoAdmissibleSolution` (exit 2 on the command line) naming the reason,
@@ -65,7 +66,8 @@ from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_cod
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..errors import NoAdmissibleSolution
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
-                                wrap_average_linear_gap, wrap_average_loads)
+                                gauss_legendre, wrap_average_linear_gap,
+                                wrap_average_loads)
 from ..physics.validity import grooves_refused, slip_warning, thin_film_check
 from ..result import Diagnostics, Fields, Result, Summary
 from .closed_refusal import NO_ANSWER, mu_bound, no_answer, no_answer_codes, no_answer_reason
@@ -87,15 +89,18 @@ def case_arrays(cases) -> dict[str, np.ndarray]:
         "eta": lambda c: c.air.viscosity, "E_b": lambda c: c.web.modulus_thickness,
         "sigma": lambda c: c.sigma, "mu_cc": lambda c: c.friction.mu_cc,
         "C": lambda c: c.friction.speed_constant,
+        # through the roughness the shear is cut off at 2 a lambda with or without slip flow
         "slip_length": lambda c: (2.0 * SLIP_COEFFICIENT * c.air.mean_free_path
-                                  if c.slip_model == "first-order" else 0.0),
+                                  if c.slip_model == "first-order"
+                                  or c.roughness_flow_model == "mean-gap" else 0.0),
         "mean_free_path": lambda c: c.air.mean_free_path,
     }
     return {k: np.array([f(c) for c in cases], dtype=float) for k, f in get.items()}
 
 
 def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="paper",
-             distribution="exponential", slip_length=0.0, mean_free_path=65e-9):
+             distribution="exponential", slip_length=0.0, mean_free_path=65e-9,
+             roughness=False):
     """Closed-form gaps and traction at many operating points at once (arrays broadcast).
 
     Parameters are SI (B in radians). Returns a dict of arrays with the gap keys ``h_inlet``,
@@ -109,7 +114,10 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     ``no_answer`` is 0 where the closed form has an answer, else the index into
     :data:`NO_ANSWER` of why not (see the module text); the numbers are kept there for
     inspection, never to be read as an answer. ``mean_free_path`` [m] (at p_a) sets the
-    bound on mu (:func:`mu_bound`).
+    bound on mu (:func:`mu_bound`); ``roughness``: the film's shear through the roughness
+    (``air.roughness_flow = "mean-gap"``). With ``variant="loads"`` the gaps are the resting
+    web's where Eq. 21 lands it, max(h, h_c); ``resting`` and ``compression`` say where that
+    is below the roller's crest.
     """
     U = np.asarray(U_r, float) + U_w
     U_s = np.abs(np.asarray(U_r, float) - U_w)
@@ -122,7 +130,7 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     if variant == "loads":
         avg = wrap_average_loads(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
                                  sigma=sigma, t=t, mu_cc=mu_cc, C=C, distribution=distribution,
-                                 slip_length=slip_length)
+                                 slip_length=slip_length, roughness=roughness)
     else:
         avg = wrap_average_linear_gap(h_in, h_out, R=R, T=T, U_s=U_s, eta=eta, E_b=E_b,
                                       sigma=sigma, t=t, mu_cc=mu_cc, C=C, variant=variant,
@@ -131,10 +139,16 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     h_c = contact_gap(T / R, E_b, sigma, t, distribution)
     code = no_answer_codes(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
                       mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path))
+    # where Eq. 21 lands the web: at rest on its asperities (friction from the loads), or
+    # clamped at 0 as the paper prints it
+    rest = h_c if variant == "loads" else 0.0
+    h_center = np.maximum(h_in - R * kappa, rest)
+    h_min = np.maximum(h_out, rest)
     return {"no_answer": code,
         "contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t, distribution),
-        "h_inlet": np.maximum(h_in, 0.0), "h_center": np.maximum(h_in - R * kappa, 0.0),
-        "h_outlet": np.maximum(h_out, 0.0), "h_min": np.maximum(h_out, 0.0),
+        "h_inlet": np.maximum(h_in, rest), "h_center": h_center,
+        "h_outlet": h_min, "h_min": h_min,
+        "resting": h_min < 0.0, "compression": np.maximum(-h_min, 0.0),
         "mu": avg["mu"], "delta_T": delta_T_from_mu(avg["mu"], T, B),
         "lambda": lam, "beta": beta, "eq21_valid": cf.eq21_valid(beta, lam),
         "eps": eps, "kappa": kappa, "h_c": h_c,
@@ -148,9 +162,10 @@ def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
     linear gap, the web resting at h_c where Eq. 21 lands it.
 
     Exponential heights: p_c(h)/p_bar = exp(-(h - h_c)/sigma) above h_c, integrated exactly
-    over the linear gap; Gaussian heights: Gauss-Legendre with ``n`` points.
+    over the linear gap while h_c >= 0; otherwise (Gaussian heights, or a web resting
+    compressed) Gauss-Legendre with ``n`` points.
     """
-    if distribution == "exponential":
+    if distribution == "exponential" and np.all(np.asarray(h_c) >= 0.0):
         h_in, h_out, h_c, sigma = np.broadcast_arrays(*(np.asarray(v, float) for v in
                                                         (h_in, h_out, h_c, sigma)))
         lo, hi = np.minimum(h_in, h_out), np.maximum(h_in, h_out)
@@ -162,11 +177,11 @@ def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
             share = np.where(span > 0.0, ((a - lo) + tail) / np.where(span > 0.0, span, 1.0),
                              np.minimum(np.exp(-(np.maximum(lo, edge) - h_c) / sigma), 1.0))
         return share
-    g, gw = np.polynomial.legendre.leggauss(n)
+    g, gw = gauss_legendre(n)
     s = 0.5 * (g + 1.0)
     h_in, h_out, h_c, p_bar = (np.asarray(v, float)[..., None] for v in
                                np.broadcast_arrays(h_in, h_out, h_c, p_bar))
-    h = np.maximum(h_in + (h_out - h_in) * s, np.maximum(h_c, 0.0))
+    h = np.maximum(h_in + (h_out - h_in) * s, h_c)
     pc = contact_pressure(h, np.asarray(E_b)[..., None] if np.ndim(E_b) else E_b,
                           np.asarray(sigma)[..., None] if np.ndim(sigma) else sigma,
                           np.asarray(t)[..., None] if np.ndim(t) else t, distribution)
@@ -183,12 +198,12 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     if not summary["eq21_valid"]:
         out.append(f"outside Eq. 21's stated range: beta = {summary['beta']:.3g} (needs > 6), "
                    f"lambda = {summary['lambda']:.3g} (needs > 7); use an FE model")
-    if summary["h_c"] <= 0.0 and summary["h_outlet"] > 0.0:
-        # the film flies over the whole wrap and carries T/R: the answer stands
-        out.append(f"h_c = {summary['h_c']:.3g} m <= 0: asperity contact at h = 0 cannot "
-                   f"carry T/R = {case.p_bar:.4g} Pa; the film carries it here, but a web "
-                   "that lands has no equilibrium")
-    if summary["h_outlet"] <= 0.0:
+    landed = summary["h_outlet"] <= max(summary["h_c"], 0.0) * (1.0 + 1e-12)
+    if landed and case.friction_variant == "loads":
+        out.append("Eq. 21's gap falls below h_c in the wrap: the web rests on its asperities "
+                   "there, at h_c" + (" with its surface compressed (h_c < 0)"
+                                      if summary["h_c"] < 0.0 else ""))
+    elif landed:
         out.append("Eq. 21 gap reaches 0 in the wrap: the web lands on the roller there "
                    "(clamped h <= 0 -> 0)")
     slip = slip_warning(case, summary["h_min"])
@@ -246,7 +261,8 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
         thin_film_check(case)
     t0 = time.perf_counter()
     values = evaluate(**case_arrays([case]), variant=case.friction_variant,
-                      distribution=case.friction.distribution)
+                      distribution=case.friction.distribution,
+                      roughness=case.roughness_flow_model == "mean-gap")
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
     if not summary.converged and raise_on_failure:
@@ -257,8 +273,11 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
     # with friction from the loads the web rests on its asperities where Eq. 21 lands it
     loads = case.friction_variant == "loads"
-    local = friction_for(case, np.maximum(h, summary.h_c) if loads else h)
     if loads:   # where Eq. 21 lands the web it rests on its asperities: boundary
+        h = np.maximum(cf.gap(x, R, B, case.eps, case.lam, case.kappa, clamp=False),
+                       summary.h_c)
+    local = friction_for(case, h)
+    if loads:
         local["regime"] = regime_code(h, summary.h_c, case.sigma)
     fields = Fields(x=x, h=h, **local)
     return Result(case, summary, fields,
@@ -282,13 +301,13 @@ def solve_many(cases) -> list[Result]:
     for c in cases:
         grooves_refused(c, "the closed form")
     out: list[Result | None] = [None] * len(cases)
-    kinds = {(c.friction_variant, c.friction.distribution) for c in cases}
-    for variant, distribution in kinds:
-        idx = [i for i, c in enumerate(cases)
-               if (c.friction_variant, c.friction.distribution) == (variant, distribution)]
+    def kind(c):
+        return c.friction_variant, c.friction.distribution, c.roughness_flow_model
+    for variant, distribution, flow in {kind(c) for c in cases}:
+        idx = [i for i, c in enumerate(cases) if kind(c) == (variant, distribution, flow)]
         t0 = time.perf_counter()
         values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant,
-                          distribution=distribution)
+                          distribution=distribution, roughness=flow == "mean-gap")
         elapsed = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
             # summaries only: the fields are the wrap endpoints of the linear Eq. 21 gap

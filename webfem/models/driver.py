@@ -25,13 +25,14 @@ from ..case import Case
 from ..errors import ConvergenceError, InputError
 from ..fem.outcome import SolveInfo
 from ..fem.scaling import FoilParameters
+from ..physics.contact import contact_pressure
 from ..physics.validity import thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Result, State
 from .admissible import admissibility, no_admissible_solution
 from .mesh_error import MeshError, estimate_mesh_error
 from .outcome import Facts, build_result
-from .refine import adapted_nodes
+from .refine import adapted_nodes, minimum
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
            "admissibility", "REMEDY_MAX_DOFS"]
@@ -125,6 +126,24 @@ def _solve_and_refine(disc: Discretisation, start: Start, prm, options, case=Non
     return (*_refine(disc, problem, u, info, prm, options), False)
 
 
+def _rests(case, problem, u, prm) -> bool:
+    """Whether the state has the web resting with its surface compressed (a gap < 0): an
+    answer when the case calls for it, but also what a spurious branch of the discrete
+    problem looks like (the paper's case at 10 m/s continued from 2 m/s: -11.8 um where the
+    web flies at 4.5 um; an 8 mm web on the base grooved roller, one level finer: -2.8 um
+    where it flies at 2.4 um). Such a state is checked against the model's safe start."""
+    return minimum(problem, u, prm)[0] < 0.0
+
+
+def _must_rest(case) -> bool:
+    """Whether the wrap pressure T_eff/R exceeds what the asperities (on the lands of a
+    grooved roller) carry uncompressed, at h = 0: the web must rest compressed somewhere."""
+    w = case.web
+    carried = case.land_fraction * float(contact_pressure(
+        0.0, w.modulus_thickness, case.sigma, w.thickness, case.friction.distribution))
+    return case.p_bar > carried
+
+
 def _refine(disc: Discretisation, problem, u, info: SolveInfo, prm, options):
     """The refinement rounds of :func:`_solve_and_refine` from a solved state."""
     rounds = 0
@@ -207,11 +226,12 @@ def _answer(disc, case, prm, options, restart):
     problem, u, info, unrefined = _solve_and_refine(disc, start, prm, options,
                                                     case if restart is None else None)
     why = admissibility(case, problem, u, prm) if info.converged else None
-    if restart is not None and not _ok(info, why):
+    if restart is not None and (not _ok(info, why) or _rests(case, problem, u, prm)):
         cold = disc.start(case, prm, options, None)
         problem, u, info2, unrefined = _solve_and_refine(disc, cold, prm, options, case)
-        info = info2.after(info, "cold start after the continued start "
-                                 + (f"ended inadmissible: {why}" if why else "failed"))
+        info = info2.after(info, "cold start after the continued start " + (
+            f"ended inadmissible: {why}" if why else "failed" if not info.converged
+            else "ended resting, to be checked"))
         start = cold
         why = admissibility(case, problem, u, prm) if info.converged else None
     if not _ok(info, why) and not _hopeless(info):
@@ -233,7 +253,29 @@ def _answer(disc, case, prm, options, restart):
     if why:
         info.converged = False
         info.reason = f"converged to an inadmissible field: {why}"
+    elif info.converged and _rests(case, problem, u, prm) and not _must_rest(case):
+        start, problem, u, info = _higher_branch(disc, case, prm, options, start, problem, u,
+                                                 info)
     return start, problem, u, info, options
+
+
+def _higher_branch(disc, case, prm, options, start, problem, u, info):
+    """An answer that rests compressed where the wrap pressure does not require it: the
+    model's safe start (which follows the flying film's branch) is solved too, and its
+    answer taken when admissible with the web higher (the web rests only where it must);
+    otherwise the resting answer stands (the film's suction may pull a web into its
+    asperities)."""
+    with stage(f"{disc.name} safe start (checks a resting answer)"):
+        safe = disc.safe_start(case, prm, options)
+    if safe is None:
+        return start, problem, u, info
+    problem2, u2, info2, _ = _solve_and_refine(disc, safe, prm, options)
+    if not _ok(info2, admissibility(case, problem2, u2, prm) if info2.converged else "failed"):
+        return start, problem, u, info
+    if minimum(problem2, u2, prm)[0] <= minimum(problem, u, prm)[0] + 1e-9:
+        return start, problem, u, info
+    note = "from the safe start: the direct start ended on a branch with the web resting lower"
+    return safe, problem2, u2, info2.after(info, note)
 
 
 def _from_safe_start(disc, case, prm, options, start, problem, u, info, why):

@@ -128,6 +128,9 @@ def fe1d_errors(case: Case, summary, diagnostics) -> dict[str, float]:
     else:
         mu_error = _relative(case, "mu", _mu(case, low, d.wrap_w, d.wrap_p, d.wrap_dpdx),
                              summary["mu"])
-    return {"h_center": SAFETY * LEAK_CENTER / case.lam,
-            "h_min": SAFETY * LEAK_MIN / case.lam, "mu": mu_error,
-            "contact_share": share_error}
+    def gap_error(name, rate):
+        h = summary[name]
+        return SAFETY * rate / case.lam * abs(h) / error_scale(case, name, h)
+
+    return {"h_center": gap_error("h_center", LEAK_CENTER), "h_min": gap_error("h_min", LEAK_MIN),
+            "mu": mu_error, "contact_share": share_error}

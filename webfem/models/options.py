@@ -248,7 +248,8 @@ class FE1DOptions(Options):
                             "contact share from a second mesh with cells twice as long, and "
                             "refine until each meets error_tol (false: no estimate, the "
                             "error_* keys null)", "bool")
-    error_tol: float = option(1e-3, "target of the mesh error estimates (relative; mu "
+    error_tol: float = option(1e-3, "target of the mesh error estimates (gaps against the "
+                              "larger of the gap and sigma; mu "
                               "against max(|mu|, 0.1 mu_cc), the contact share absolute): "
                               "every cell is bisected until each estimate meets it", "float",
                               lo=1e-8, hi=1.0)
@@ -316,8 +317,8 @@ class _AutoBase(Options):
                            "h_min, mu and the contact share, each)", "choice",
                            choices=("all", "mu", "h_center", "h_min", "contact_share"))
     tol: float = option(0.01, "error the chosen model must meet in each judged quantity "
-                        "(relative; mu against max(|mu|, 0.1 mu_cc), the contact share "
-                        "absolute)", "float", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+                        "(gaps against the larger of the gap and sigma, mu against "
+                        "max(|mu|, 0.1 mu_cc), the contact share absolute)", "float", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     fe_tol: float | None = option(None, "residual tolerance of the FE model used (none: its "
                                   "default)", "float", lo=0.0, lo_open=True, hi=1e-2,
                                   none=True)

@@ -28,9 +28,10 @@ class ReadOut:
     """The gaps [m] at the wrap centre and edges, the smallest gap and where [m], the
     headline friction ``mu`` (where nothing slides the traction at the onset of slip,
     :func:`~webfem.physics.effects.traction_summary`, whose keys ``traction`` holds), the
-    regime shares, the share of the wrap load carried by asperity contact, and the wrap
+    regime shares, the share of the wrap load carried by asperity contact, the wrap
     quadrature (points, weights, gaps, pressure and its gradient) the summary and
-    diagnostics keep."""
+    diagnostics keep, and the web's largest ``compression`` -h [m] where it rests below the
+    roller's crest (0 elsewhere)."""
 
     h_center: float
     h_inlet: float
@@ -46,6 +47,7 @@ class ReadOut:
     p: np.ndarray
     dpdx: np.ndarray
     traction: dict
+    compression: float = 0.0
 
     def value(self, name: str) -> float:
         """One of :data:`READ_QUANTITIES` by name."""
@@ -83,7 +85,8 @@ def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
     return ReadOut(h_center=H3[0] * Hs, h_inlet=H3[1] * Hs, h_outlet=H3[2] * Hs,
                    h_min=Hmin * Hs, x_min=Xmin * case.x_scale, mu=traction["mu"],
                    shares=shares, contact_share=contact_share, pts=pts, wts=wts, h=h, p=p,
-                   dpdx=dpdx, traction=traction)
+                   dpdx=dpdx, traction=traction,
+                   compression=max(0.0, -min(float(np.min(h)), Hmin * Hs)))
 
 
 #: mu's error is relative to mu, or to this fraction of mu_cc where mu is smaller (where
@@ -92,14 +95,16 @@ MU_SCALE = 0.1
 
 
 def error_scale(case: Case, name: str, value: float) -> float:
-    """What an error in quantity ``name`` at ``value`` is measured against: the gap itself
-    (relative errors), mu or :data:`MU_SCALE` mu_cc, and 1 for the contact share (a share
-    of the load: its error is absolute)."""
+    """What an error in quantity ``name`` at ``value`` is measured against: the larger of
+    the gap and the roughness sigma (a gap below the roughness matters only through the
+    contact it implies, which mu and the contact share carry; a web resting compressed has
+    a gap near or below 0), mu or :data:`MU_SCALE` mu_cc, and 1 for the contact share (a
+    share of the load: its error is absolute)."""
     if name == "contact_share":
         return 1.0
     if name == "mu":
         return max(abs(value), MU_SCALE * case.friction.mu_cc)
-    return abs(value)
+    return max(abs(value), case.sigma)
 
 
 def errors_between(case: Case, answer: ReadOut, other: ReadOut) -> dict[str, float]:

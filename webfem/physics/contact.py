@@ -10,6 +10,9 @@ at separation h is p_c(h) = (E_b / t) int_h^inf (z - h) phi(z) dz. Two height de
   p_c = (E_b / t) [sigma / sqrt(2 pi) exp(-h^2 / (2 sigma^2)) - (h / 2) erfc(h / (sigma sqrt 2))]
   and h_c from p_c(h_c) = pbar by Newton's method.
 
+Both hold for h < 0 too (:mod:`webfem.physics.roughness`): a web whose wrap pressure exceeds
+what the asperities carry at h = 0 rests on the roller with its surface compressed.
+
 All functions broadcast over numpy arrays.
 
 Examples
@@ -21,7 +24,8 @@ Examples
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erfc
+
+from .roughness import mean_excess, wet_share
 
 __all__ = ["contact_pressure", "contact_pressure_derivative", "contact_gap", "load_ratio",
            "REGIMES", "DISTRIBUTIONS", "regime_code"]
@@ -41,37 +45,49 @@ REGIMES = ("boundary", "mixed", "fluid")
 
 
 def contact_pressure(h, E_b, sigma, t, distribution="exponential"):
-    """Mean asperity contact pressure p_c(h) [Pa] (Eq. 10 for the exponential density).
+    """Mean asperity contact pressure p_c(h) = (E_b / t) E[(z - h)+] [Pa] (Eq. 10 for the
+    exponential density and h >= 0), continued past full asperity compression: for h < 0
+    (the web's mean surface plane below the roller's crest) the exponential density gives
+    (E_b / t)(-h + (sigma/2) exp(h/sigma)), smooth to the second derivative at h = 0 and
+    unbounded as h falls, so every wrap pressure has an equilibrium (physics.md, "Webs that
+    rest on the roller"; :func:`webfem.physics.roughness.mean_excess`).
 
     Eq. 8 as printed integrates (h - z); the load is positive for (z - h), which gives Eq. 10.
     """
-    h = np.asarray(h, dtype=float)
-    if distribution == "exponential":
-        with np.errstate(over="ignore"):
-            return E_b * sigma / (2.0 * t) * np.exp(-h / sigma)
-    _check(distribution)
-    return E_b / t * (sigma / _SQ2PI * np.exp(-0.5 * (h / sigma) ** 2)
-                      - 0.5 * h * erfc(h / (sigma * _SQ2)))
+    return E_b / t * mean_excess(h, sigma, distribution)
 
 
 def contact_pressure_derivative(h, E_b, sigma, t, distribution="exponential"):
-    """d p_c / d h [Pa/m] (negative: contact relaxes as the gap opens)."""
-    h = np.asarray(h, dtype=float)
-    if distribution == "exponential":
-        return -contact_pressure(h, E_b, sigma, t) / sigma
-    _check(distribution)
-    return -0.5 * E_b / t * erfc(h / (sigma * _SQ2))
+    """d p_c / d h = -(E_b / t) P(z > h) [Pa/m] (negative: contact relaxes as the gap
+    opens)."""
+    return -E_b / t * (1.0 - wet_share(h, sigma, distribution))
 
 
 def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
-    """Gap h_c at which contact alone carries the wrap pressure p_bar = T/R [m] (Eq. 11)."""
+    """Gap h_c at which contact alone carries the wrap pressure p_bar = T/R [m]: Eq. 11,
+    sigma ln(E_b sigma / (2 t p_bar)), while p_bar <= E_b sigma / (2 t); beyond, the web
+    rests compressed (h_c < 0) on the continued law, solved by Newton's method (p_c is
+    convex and decreasing in h: monotone steps)."""
     p_bar = np.asarray(p_bar, dtype=float)
-    h = sigma * np.log(E_b * sigma / (2.0 * t * p_bar))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h = sigma * np.log(E_b * sigma / (2.0 * t * p_bar))
     if distribution == "exponential":
-        return h
+        over = p_bar > E_b * sigma / (2.0 * t)
+        if not np.any(over):
+            return h
+        # start below the root: the linear part -h alone carries p_bar there
+        g = np.where(over, -p_bar * t / E_b, 0.0)
+        for _ in range(60):
+            f = E_b / t * mean_excess(g, sigma) - p_bar
+            step = f / contact_pressure_derivative(g, E_b, sigma, t)
+            g = np.where(over, g - step, g)
+            if np.all(np.abs(np.where(over, step, 0.0)) <= 1e-14 * sigma):
+                break
+        return np.where(over, g, h)
     _check(distribution)
     # Newton on log p_c(h) = log p_bar (log p_c is concave and decreasing: monotone steps)
-    for _ in range(60):
+    h = np.where(np.isfinite(h), h, -p_bar * t / E_b)
+    for _ in range(80):
         pc = contact_pressure(h, E_b, sigma, t, distribution)
         step = (np.log(pc) - np.log(p_bar)) / (
             contact_pressure_derivative(h, E_b, sigma, t, distribution) / pc)

@@ -12,6 +12,8 @@ slip                   ``air.slip = "first-order"``     ``air.slip = "none"``
 isothermal-permeation  k > 0, ``web.permeation =        ``web.permeation = "paper"``
                        "isothermal"``
 load-friction          ``friction.variant = "loads"``   ``friction.variant = "paper"``
+roughness-flow         ``air.roughness_flow =           ``air.roughness_flow = "none"``
+                       "mean-gap"``
 =====================  ===============================  ====================================
 
 ``model.physics = "paper"`` switches them all off at once (an explicit D stays).
@@ -20,7 +22,7 @@ Examples
 --------
 >>> from webfem import Case
 >>> included(Case())
-('bending', 'slip', 'isothermal-permeation', 'load-friction')
+('bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow')
 >>> included(Case().updated({"model.physics": "paper"}))
 ()
 """
@@ -35,14 +37,17 @@ __all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out
            "idler_check", "traction_summary"]
 
 #: Every effect, in the order tables list them.
-EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction")
+EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction",
+           "roughness-flow")
 #: The case keys that switch each effect off.
 SWITCH_OFF = {"inertia": {"web.density": 0.0}, "bending": {"web.bending_stiffness": 0.0},
               "slip": {"air.slip": "none"}, "isothermal-permeation": {"web.permeation": "paper"},
-              "load-friction": {"friction.variant": "paper"}}
-#: What the closed form carries: T_eff (inertia) and the friction from the loads on its
-#: Eq. 21 gap (contact and Couette shear with slip; no pressure-gradient shear).
-CLOSED_FORM_CARRIES = ("inertia", "load-friction")
+              "load-friction": {"friction.variant": "paper"},
+              "roughness-flow": {"air.roughness_flow": "none"}}
+#: What the closed form carries: T_eff (inertia), the friction from the loads on its Eq. 21
+#: gap (contact and Couette shear with slip; no pressure-gradient shear) and, of the
+#: roughness flow, the shear of the air through the roughness (Eq. 21's gap has no flow term).
+CLOSED_FORM_CARRIES = ("inertia", "load-friction", "roughness-flow")
 
 
 def included(case) -> tuple[str, ...]:
@@ -51,7 +56,8 @@ def included(case) -> tuple[str, ...]:
           "slip": case.slip_model == "first-order",
           "isothermal-permeation": (case.permeation_model == "isothermal"
                                     and case.web.permeability > 0.0),
-          "load-friction": case.friction_variant == "loads"}
+          "load-friction": case.friction_variant == "loads",
+          "roughness-flow": case.roughness_flow_model == "mean-gap"}
     return tuple(name for name in EFFECTS if on[name])
 
 

@@ -31,7 +31,9 @@ def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
     w.flags.writeable = False
     return g, w
 
-from .contact import RESTING_SHARE, contact_gap, load_ratio, regime_code, resting_gap
+from .contact import (RESTING_SHARE, contact_gap, contact_pressure, load_ratio, regime_code,
+                      resting_gap)
+from .roughness import mean_gap, shear_factor
 
 __all__ = ["friction_for", "load_friction", "wrap_average_loads", "SLIP_COEFFICIENT", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
            "wrap_average_numeric",
@@ -86,7 +88,7 @@ def local_friction(h, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C, variant="paper
 
 
 def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_length=0.0,
-                  shear_p=0.0, land=1.0, groove_depth=0.0):
+                  shear_p=0.0, land=1.0, groove_depth=0.0, roughness=None):
     """Friction from the solved loads (``friction.variant = "loads"``).
 
     The local traction on the web is the asperity friction on the contact pressure plus the
@@ -101,6 +103,13 @@ def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_leng
     land p_c), and the Couette shear is land eta U_s/(h + 2 a lambda) + (1 - land) eta U_s /
     (h + delta + 2 a lambda).
 
+    ``roughness``: the asperity height density ("exponential" or "gaussian") when the air is
+    sheared only where it wets the roller, over its local gap (``air.roughness_flow =
+    "mean-gap"``): the Couette shear is then eta U_s E[1 / ((h - z) + 2 a lambda); z < h]
+    (:func:`webfem.physics.roughness.shear_factor`), which tends to the smooth film's for
+    h >> sigma and to zero as the web comes to rest, so mu tends to mu_c there; None: the
+    smooth film's eta U_s / (h + 2 a lambda).
+
     Returns the arrays of :func:`local_friction` (``chi_c`` = min(p_c/p_bar, 1), ``mu_f`` the
     film's part tau_film/p_bar; ``regime`` by the gap against ``h_edge`` and 3 sigma).
 
@@ -113,11 +122,16 @@ def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_leng
     p_c = land * np.asarray(p_c, dtype=float)
     mu_c = mu_boundary(U_s, mu_cc, C) + 0.0 * h
     with np.errstate(divide="ignore"):
-        tau_f = np.where(h + slip_length > 0.0,
-                         eta * U_s / np.where(h + slip_length > 0.0, h + slip_length, 1.0),
-                         np.inf)
+        if roughness is None:
+            tau_f = np.where(h + slip_length > 0.0,
+                             eta * U_s / np.where(h + slip_length > 0.0, h + slip_length, 1.0),
+                             np.inf)
+            groove = eta * U_s / (h + groove_depth + slip_length)
+        else:
+            tau_f = eta * U_s * shear_factor(h, sigma, slip_length, roughness)
+            groove = eta * U_s * shear_factor(h + groove_depth, sigma, slip_length, roughness)
         if land < 1.0:
-            tau_f = land * tau_f + (1.0 - land) * eta * U_s / (h + groove_depth + slip_length)
+            tau_f = land * tau_f + (1.0 - land) * groove
         tau_f = tau_f + shear_p
     mu_f = tau_f / p_bar
     return {"chi_c": np.minimum(p_c / p_bar, 1.0), "mu_c": mu_c, "mu_f": mu_f,
@@ -132,14 +146,17 @@ def friction_for(case, h, resting: bool = False, p=None, dpdx=None) -> dict:
     length (default p_a) and the pressure gradient ``dpdx`` [Pa/m] (default 0))."""
     w = case.web
     if case.friction_variant == "loads":
-        from .contact import contact_pressure
-
         h = np.asarray(h, dtype=float)
         p_a = case.air.ambient_pressure
         p = p_a if p is None else np.asarray(p, float)
+        density = case.friction.distribution
+        rough = case.roughness_flow_model == "mean-gap"
+        # through the roughness the shear's singularity at contact is cut off at the
+        # molecular scale, 2 a lambda, whether or not the film carries slip flow
         slip = (2.0 * SLIP_COEFFICIENT * case.air.mean_free_path * p_a / p
-                if case.slip_model == "first-order" else 0.0)
-        shear_p = 0.0 if dpdx is None else -0.5 * h * np.asarray(dpdx, float)
+                if case.slip_model == "first-order" or rough else 0.0)
+        gap = mean_gap(h, case.sigma, density) if rough else h
+        shear_p = 0.0 if dpdx is None else -0.5 * gap * np.asarray(dpdx, float)
         return load_friction(
             h, contact_pressure(h, w.modulus_thickness, case.sigma, w.thickness,
                                 case.friction.distribution),
@@ -148,7 +165,7 @@ def friction_for(case, h, resting: bool = False, p=None, dpdx=None) -> dict:
             h_edge=resting_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
                                case.friction.distribution, RESTING_SHARE if resting else 1.0),
             sigma=case.sigma, slip_length=slip, shear_p=shear_p, land=case.land_fraction,
-            groove_depth=case.roller.groove_depth)
+            groove_depth=case.roller.groove_depth, roughness=density if rough else None)
     return local_friction(h, R=case.roller.radius, T=case.tension_eff, U_s=case.U_slide,
                           eta=case.air.viscosity, E_b=w.modulus_thickness,
                           sigma=case.sigma, t=w.thickness, mu_cc=case.friction.mu_cc,
@@ -323,13 +340,15 @@ def mu_from_delta_T(delta_T, T, B):
 
 
 def wrap_average_loads(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
-                       distribution="exponential", slip_length=0.0, n=32):
+                       distribution="exponential", slip_length=0.0, n=32, roughness=False):
     """Wrap average of the "loads" friction (:func:`load_friction`, no pressure-gradient
     shear) over a linear gap from ``h_in`` to ``h_out``, for the closed form.
 
     Where the linear gap falls below h_c the web rests on its asperities at h_c (as the FE
-    models find), so the gap is taken as max(h, h_c) there; Gauss-Legendre quadrature with
-    ``n`` points on each piece between h_c and 3 sigma. Arrays broadcast over operating points.
+    models find; h_c < 0 where the web rests compressed), so the gap is taken as
+    max(h, h_c) there; Gauss-Legendre quadrature with ``n`` points on each piece between h_c
+    and 3 sigma. ``roughness``: the film's shear through the roughness (:func:`load_friction`).
+    Arrays broadcast over operating points.
     """
     arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in
                                    (h_in, h_out, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
@@ -354,11 +373,11 @@ def wrap_average_loads(h_in, h_out, *, R, T, U_s, eta, E_b, sigma, t, mu_cc, C,
         s = 0.5 * (a + b) + 0.5 * (b - a) * g
         wts = 0.5 * (b - a) * gw
         h_line = h_in + span * s
-        h = np.maximum(h_line, np.maximum(h_c, 0.0))
-        from .contact import contact_pressure
+        h = np.maximum(h_line, h_c)
         loc = load_friction(h, contact_pressure(h, E_b, sigma, t, distribution), p_bar=p_bar,
                             U_s=U_s, eta=eta, mu_cc=mu_cc, C=C, h_edge=h_c, sigma=sigma,
-                            slip_length=slip_length)
+                            slip_length=slip_length,
+                            roughness=distribution if roughness else None)
         total += np.sum(loc["mu"] * wts, axis=-1)
         regime = regime_code(h_line, h_c, sigma)   # landed by Eq. 21: boundary
         for k in range(3):

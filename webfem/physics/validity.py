@@ -14,11 +14,10 @@ webfem.errors.NoAdmissibleSolution: web.tension = 1e-06 N/m with U = 20 m/s and 
 from __future__ import annotations
 
 from ..errors import NoAdmissibleSolution
-from .contact import contact_pressure
 
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
            "thin_film_message",
-           "wrap_length_check", "slip_warning", "contact_overload"]
+           "wrap_length_check", "slip_warning"]
 
 #: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
 MEAN_FREE_PATH = 68e-9
@@ -75,21 +74,6 @@ def slip_warning(case, h_min: float) -> str | None:
                 "m): slip flow, where the continuum Reynolds equation overestimates the film "
                 "pressure")
     return None
-
-
-def contact_overload(case) -> str | None:
-    """Why no gap h >= 0 can carry the wrap pressure by contact alone, or None: T/R above
-    the asperity contact pressure at h = 0 (E_b sigma/(2t) for the exponential law)."""
-    w = case.web
-    p0 = float(contact_pressure(0.0, w.modulus_thickness, case.sigma, w.thickness,
-                                case.friction.distribution))
-    if case.p_bar <= p0:
-        return None
-    return (f"the wrap pressure T/R = {case.p_bar:.4g} Pa exceeds what the "
-            f"{case.friction.distribution} asperity contact law carries at h = 0 "
-            f"({p0:.4g} Pa); lower web.tension below "
-            f"{p0 * case.roller.radius + case.web_inertia:.4g} N/m or "
-            "raise web.modulus_thickness or web.roughness")
 
 
 #: The case keys of a grooved roller.
