@@ -111,3 +111,19 @@ def test_the_roughness_flow_switches_off_with_the_papers_physics():
     off = webfem.solve(full.updated({"air.roughness_flow": "none"}), model="fe1d")
     assert "roughness-flow" in r["effects"] and "roughness-flow" not in off["effects"]
     assert r["mu"] > off["mu"] and r["h_min"] != off["h_min"]
+
+
+@pytest.mark.parametrize("model", ["closed-form", "fe1d", "fe2d", "auto"])
+def test_a_web_compressed_through_its_thickness_is_refused_by_name(model):
+    """A web far softer across its thickness than the wrap pressure (E_b = 1 kPa at T = 300
+    N/m: contact alone would compress it by 0.38 mm, its thickness is 70 um) has no
+    admissible equilibrium: every model refuses it up front with the keys that change it,
+    instead of iterating to "did not converge"."""
+    case = BASE.updated({"web.tension": 300.0, "web.modulus_thickness": 1e3})
+    with pytest.raises(webfem.errors.NoAdmissibleSolution,
+                       match="through its thickness web.thickness = 7e-05 m"):
+        webfem.solve(case, model=model)
+    # the same soft web where the film holds it off the roller is an answer
+    r = webfem.solve(BASE.updated({"web.modulus_thickness": 1e3, "web.tension": 20.0}),
+                     model="fe1d")
+    assert r["converged"] and not r["resting"]

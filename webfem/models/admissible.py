@@ -16,9 +16,10 @@ import numpy as np
 from ..case import Case
 from ..errors import NoAdmissibleSolution
 from ..fem.scaling import FoilParameters
+from ..physics.contact import contact_gap
 from .refine import minimum
 
-__all__ = ["admissibility", "no_admissible_solution", "compression_limit"]
+__all__ = ["admissibility", "no_admissible_solution", "compression_limit", "through_thickness"]
 
 
 def compression_limit(case: Case, prm: FoilParameters) -> float:
@@ -69,3 +70,22 @@ def no_admissible_solution(case: Case, prm: FoilParameters, why: str, problem=No
         f"through its thickness web.thickness = {w.thickness:g} m (thickness-direction "
         f"modulus web.modulus_thickness = {w.modulus_thickness:g} Pa): the asperity contact "
         "law does not hold there; a stiffer web or a lower web.tension is within it")
+
+
+def through_thickness(case: Case, prm: FoilParameters) -> str | None:
+    """Why a web resting on the roller would be compressed through its thickness, or None:
+    the gap at which contact alone carries T_eff/R (the continued law) at or below minus the
+    web's thickness. Where the film does not hold the web off the roller, no equilibrium of
+    the model is admissible then."""
+    if not prm.contact:
+        return None
+    w = case.web
+    h_c = float(contact_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
+                            case.friction.distribution))
+    if h_c > -w.thickness:
+        return None
+    return (f"the wrap pressure T_eff/R = {case.p_bar:.4g} Pa, carried by contact alone, "
+            f"would compress the web's surface by {-h_c:.3g} m, through its thickness "
+            f"web.thickness = {w.thickness:g} m (thickness-direction modulus "
+            f"web.modulus_thickness = {w.modulus_thickness:g} Pa): the asperity contact law "
+            "does not hold there; a stiffer web or a lower web.tension is within it")

@@ -28,7 +28,11 @@ h(x) from h_inlet down to h_outlet, in this order:
     shear eta U_s / (h + 2 a lambda) at a resting gap h_c far below sigma goes further,
     where it no longer holds (a contact law near its limit: T/R close to E_b sigma / (2 t)).
     A mu a little above mu_cc is an answer: boundary friction near mu_cc plus the real drag
-    of the air (the base web at T = 120 N/m and 9 m/s: 0.301).
+    of the air (the base web at T = 120 N/m and 9 m/s: 0.301);
+``compressed``
+    the resting web's stated gap would compress its surface through its thickness (h_min <=
+    -t): a web far softer across its thickness than the wrap pressure, outside the contact
+    law.
 
 A partly landed wrap is an answer (the paper's): where Eq. 21 puts h <= h_c the web rests on
 its asperities, boundary lubrication with mu = (2/pi) mu_cc atan(U_s/C). So the base case
@@ -137,13 +141,14 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
                                       distribution=distribution)
     shares = np.stack([avg["share_boundary"], avg["share_mixed"], avg["share_fluid"]])
     h_c = contact_gap(T / R, E_b, sigma, t, distribution)
-    code = no_answer_codes(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
-                      mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path))
     # where Eq. 21 lands the web: at rest on its asperities (friction from the loads), or
     # clamped at 0 as the paper prints it
     rest = h_c if variant == "loads" else 0.0
     h_center = np.maximum(h_in - R * kappa, rest)
     h_min = np.maximum(h_out, rest)
+    code = no_answer_codes(R=R, eps=eps, h_in=h_in, h_out=h_out, h_c=h_c, mu=avg["mu"],
+                           mu_max=mu_bound(mu_cc, eta, U_s, sigma, T / R, mean_free_path),
+                           h_min=h_min, t=t)
     return {"no_answer": code,
         "contact_share": _contact_share(h_in, h_out, h_c, T / R, E_b, sigma, t, distribution),
         "h_inlet": np.maximum(h_in, rest), "h_center": h_center,
@@ -243,6 +248,14 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Sum
 ERROR_BASIS = ("model: Eq. 21's fit against the wide-web gap 0.643 R eps^(2/3) with "
                "1.48/lambda edge leakage, Eshel-Elrod's exit constriction and the pressure-"
                "driven shear it leaves out (doubled); no mesh")
+
+
+def evaluate_case(case: Case) -> int:
+    """The :data:`NO_ANSWER` code of ``case`` (0: the closed form has an answer)."""
+    values = evaluate(**case_arrays([case]), variant=case.friction_variant,
+                      distribution=case.friction.distribution,
+                      roughness=case.roughness_flow_model == "mean-gap")
+    return int(np.asarray(values["no_answer"]).ravel()[0])
 
 
 def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None = None,

@@ -18,7 +18,7 @@ __all__ = ["NO_ANSWER", "mu_bound", "no_answer_codes", "no_answer", "no_answer_r
 
 #: Why the closed form has no answer, by the code :func:`evaluate` returns as ``no_answer``
 #: (0: an answer); the module text says what each means.
-NO_ANSWER = ("", "thin-film", "gap", "landed", "mu")
+NO_ANSWER = ("", "thin-film", "gap", "landed", "mu", "compressed")
 def mu_bound(mu_cc, eta, U_s, sigma, p_bar, mean_free_path):
     """The largest traction coefficient the closed form may state: the asperities' mu_cc
     plus the most the air between them can add where the web rests on them,
@@ -36,20 +36,24 @@ def mu_bound(mu_cc, eta, U_s, sigma, p_bar, mean_free_path):
                     / (sigma * p_bar))
 
 
-def no_answer_codes(*, R, eps, h_in, h_out, h_c, mu, mu_max):
+def no_answer_codes(*, R, eps, h_in, h_out, h_c, mu, mu_max, h_min=None, t=None):
     """The :data:`NO_ANSWER` code of each point (0: an answer), the first reason that
     applies in the order of the module text; ``h_in`` and ``h_out`` are the unclamped Eq. 21
-    gaps at the wrap edges (h_out <= h_in: permeation only lowers the gap)."""
+    gaps at the wrap edges (h_out <= h_in: permeation only lowers the gap); ``h_min`` the
+    stated (resting) minimum gap and ``t`` the web's thickness."""
     limit = THIN_FILM_RATIO * np.asarray(R, float)
     mu = np.asarray(mu, float)
+    through = (np.asarray(h_min, float) <= -np.asarray(t, float) if t is not None
+               else np.zeros(np.shape(mu), bool))
     with np.errstate(invalid="ignore"):
-        reasons = [
-            np.asarray(R, float) * np.cbrt(eps) ** 2 > limit,              # thin-film
-            np.maximum(h_in, h_c) > limit,                                 # gap
-            h_in <= 0.0,                                                   # landed
-            ~np.isfinite(mu) | (mu > mu_max),                             # mu
-        ]
-    return np.select(reasons, list(range(1, len(reasons) + 1)), 0)
+        reasons = {                     # in the order they are judged
+            "thin-film": np.asarray(R, float) * np.cbrt(eps) ** 2 > limit,
+            "gap": np.maximum(h_in, h_c) > limit,
+            "landed": h_in <= 0.0,
+            "compressed": through,
+            "mu": ~np.isfinite(mu) | (mu > mu_max),
+        }
+    return np.select(list(reasons.values()), [NO_ANSWER.index(k) for k in reasons], 0)
 
 
 def no_answer(result) -> str | None:
@@ -96,6 +100,13 @@ def no_answer_reason(code: int, case: Case, s: dict) -> str:
     if reason == "landed":
         return (f"Eq. 21's gap is <= 0 over the whole wrap (h_inlet = {s['h_inlet']:.3g} m "
                 f"at U = {case.U:g} m/s): no film is left to describe; raise the speeds")
+    if reason == "compressed":
+        w = case.web
+        return (f"the wrap pressure T_eff/R = {case.p_bar:.4g} Pa would compress the web's "
+                f"surface by {-s['h_min']:.3g} m, through its thickness web.thickness = "
+                f"{w.thickness:g} m (thickness-direction modulus web.modulus_thickness = "
+                f"{w.modulus_thickness:g} Pa): the asperity contact law does not hold there; "
+                "a stiffer web or a lower web.tension is within it")
     if not np.isfinite(s["mu"]):
         if case.friction_variant != "loads":
             return ("the wrap-averaged mu is not finite: the paper's friction (Eqs. 28-30) "

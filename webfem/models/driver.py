@@ -22,14 +22,14 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..case import Case
-from ..errors import ConvergenceError, InputError
+from ..errors import ConvergenceError, InputError, NoAdmissibleSolution
 from ..fem.outcome import SolveInfo
 from ..fem.scaling import FoilParameters
 from ..physics.contact import contact_pressure
 from ..physics.validity import thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Result, State
-from .admissible import admissibility, no_admissible_solution
+from .admissible import admissibility, no_admissible_solution, through_thickness
 from .mesh_error import MeshError, estimate_mesh_error
 from .outcome import Facts, build_result
 from .refine import adapted_nodes, minimum
@@ -174,6 +174,7 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
     """
     thin_film_check(case)
     wrap_length_check(case)
+    _resting_through(case, options)
     t0 = time.perf_counter()
     restart = initial.restart if isinstance(initial, Result) else initial
     prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
@@ -199,11 +200,30 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
                                           f"{'s' if rounds > 1 else ''} of every cell)"})
     result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
                           options, start, mesh_error)
+    crushed = None if result.summary.converged else through_thickness(case, prm)
+    if crushed and raise_on_failure:
+        # the failure has a physical reason: a web that must rest cannot, the contact law
+        # ends at the web's thickness
+        raise NoAdmissibleSolution(f"no admissible solution: {crushed} ({disc.name} found "
+                                   f"no equilibrium: {info.reason})")
     if not result.summary.converged and raise_on_failure:
         raise ConvergenceError(f"{disc.name} ({options.method}) did not converge: "
                                f"{info.reason} after {info.iterations} iterations, "
                                f"residual {info.residual:.3e}", result, info.history)
     return result
+
+
+def _resting_through(case: Case, options) -> None:
+    """Refuse up front a web that must rest (the closed form lands it) and that contact
+    alone would compress through its thickness: no equilibrium is admissible, and the
+    solvers would only find that out in minutes."""
+    prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
+    crushed = through_thickness(case, prm)
+    if crushed is None:
+        return
+    from .closed import NO_ANSWER, evaluate_case
+    if NO_ANSWER[evaluate_case(case)] in ("compressed", "landed"):
+        raise NoAdmissibleSolution(f"no admissible solution: {crushed}")
 
 
 def _ok(info: SolveInfo, why) -> bool:
