@@ -1,7 +1,7 @@
 """Envelope benchmark (issue 22, item 5): auto across a fixed random sample of realistic lines.
 
 Run: ``python benchmarks/envelope.py [--points 200] [--workers 2] [--out out/envelope]``
-(about 10-30 minutes for 200 points on 2 cores; not part of the test suite). The sample and
+(about 7 minutes for 200 points on 2 cores; not part of the test suite). The sample and
 its generator: ``envelope_sample.py``. Each point is solved with ``webfem.solve(case)``
 (auto, the default options) in its own forked process (one BLAS thread), killed after
 ``--timeout`` s (60) or above ``--memory`` GB; its time is the solve's wall time, its memory
