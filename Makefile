@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 OUT ?= out
 
-.PHONY: run test test-slow bench clean meshes figures studies
+.PHONY: run test test-slow bench envelope clean meshes figures studies
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -45,6 +45,11 @@ bench: $(STAMP)
 	$(PY) benchmarks/bench_sweeps.py
 	$(PY) benchmarks/bench_calibration.py
 	$(PY) benchmarks/bench_figures.py
+
+# auto across 200 random operating points of real lines (issue 22's targets; about 7 minutes
+# on 2 processes, resumable: per-point rows in $(OUT)/envelope/envelope.csv)
+envelope: $(STAMP)
+	cd benchmarks && $(abspath $(PY)) envelope.py --points 200 --workers 2 --out $(abspath $(OUT))/envelope
 
 clean:
 	rm -rf $(OUT) .pytest_cache
