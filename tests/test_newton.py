@@ -89,6 +89,31 @@ def test_a_residual_far_above_the_tolerance_is_never_accepted_as_a_floor():
     assert out.residual > nw.FLOOR_FACTOR * 1e-9
 
 
+def _stiff(scale, n=50):
+    """u^3 = 8 with every row scaled by ``scale``: a true rounding floor eps |J| |u| of about
+    eps 12 scale sqrt(n) (a stiff web's bending rows), and noise at about a tenth of it."""
+    F0, J0 = _noisy(np.finfo(float).eps * 12.0 * scale * 0.1, n)
+    return (lambda u: scale * (u**3 - 8.0) + (F0(u) - (u**3 - 8.0)),
+            lambda u: (scale * J0(u)).tocsr())
+
+
+def test_a_floor_above_the_default_tolerance_is_converged_and_says_so():
+    """Board's bending (Dn in the hundreds) put the residual's rounding floor, eps |J| |u|,
+    at 4e-7, far above the absolute tolerance 1e-9: the iterate no longer moved and was
+    called a failure. At the default tolerance it is converged, and the reason names both
+    figures; a stricter tolerance asked for is still taken strictly."""
+    F, J = _stiff(1e8)
+    u0 = np.full(50, 1.5)
+    out = nw.newton(F, J, u0, tol=1e-9, step_tol=1e-10, max_iter=60)
+    floor = nw.rounding_floor(J(out.u), out.u, np.arange(50))
+    assert floor > 1e3 * 1e-9
+    assert out.converged and "below what double precision resolves" in out.reason
+    assert 1e-9 < out.residual <= nw.FLOOR_FACTOR * floor
+    assert np.max(np.abs(out.u - 2.0)) < 1e-12
+    strict = nw.newton(F, J, u0, tol=1e-12, step_tol=1e-10, max_iter=60)
+    assert not strict.converged and "stalls" in strict.reason
+
+
 def test_fast_grooved_design_at_high_speed_converges():
     """1.27 mm pitch, 95 % land, 0.25 mm deep, 51.8 m/s: the traction-loss search of the
     groove map stopped here with 'line search failed ... residual 1.243e-09' (corrections

@@ -306,8 +306,8 @@ def test_a_driver_failure_of_linear_algebra_is_a_message(monkeypatch):
 
 def test_tol_means_the_residual_tolerance_it_says():
     """tol = 1e-20 returned 'converged' at a residual of 4e-11 (the step was below its
-    tolerance); a tolerance below the residual's rounding floor now fails, saying so, and
-    the same in a fresh process as after other solves."""
+    tolerance); a tolerance below the residual's rounding floor, asked for below the default,
+    now fails, saying so, and the same in a fresh process as after other solves."""
     with pytest.raises(webfem.ConvergenceError, match="rounding floor"):
         webfem.solve(BASE, model="fe1d", tol=1e-20)
     r = webfem.solve(BASE, model="fe1d", tol=1e-10)

@@ -143,6 +143,21 @@ class NewtonResult:
 #: corrections ~3e-15).
 FLOOR_FACTOR = 10.0
 
+
+#: A tolerance below this (webfem's default, 1e-9) is a caller asking for more than the
+#: default: it is taken strictly, and a residual that cannot reach it for rounding fails.
+STRICT_BELOW = 1e-9
+
+
+def rounding_floor(Jm, u, free) -> float:
+    """The smallest residual double precision resolves at ``u``: eps || |J| |u| ||_2 over the
+    free rows, the normwise backward error's scale (every term of the residual's assembly
+    rounds at about eps times its size, and |J| |u| is their size). A stiff web's bending
+    (Dn in the hundreds: 0.5 mm board on a 30 mm roller) puts it above an absolute tolerance
+    of 1e-9 (4e-7 there, against 3e-11 on the base case)."""
+    A = abs(sp.csr_matrix(Jm)[free][:, free])
+    return float(np.finfo(float).eps * norm2(A @ np.abs(u[free])))
+
 #: A chord step is kept when it reaches the tolerance or lowers the residual this many times.
 CHORD_GAIN = 10.0
 
@@ -156,9 +171,13 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     """Solve F(u) = 0 for the ``free`` entries of u (others keep u0's values).
 
     Converged when ||F||_2 <= max(tol, rtol ||F(u0)||_2), or when the full Newton step's
-    max-norm is <= step_tol (scaled by 1 + ||u||_inf) and ||F|| <= :data:`FLOOR_FACTOR` tol
-    (no step can lower a residual at its rounding floor). A residual that stalls above that
-    is a failure whose reason names it: ``tol`` means the residual tolerance it says. The step is halved until ||F|| decreases (Armijo-like, no sufficient-decrease
+    max-norm is <= step_tol (scaled by 1 + ||u||_inf) and ||F|| <= :data:`FLOOR_FACTOR`
+    times the larger of tol and the residual's rounding floor (:func:`rounding_floor`, eps
+    || |J| |u| ||: no step can lower a residual there, and the Newton correction, the
+    iterate's own error, is below step_tol). The reason then says which: a residual above
+    tol is named with its floor. A tol below :data:`STRICT_BELOW` (the default) is taken
+    strictly: only the FLOOR_FACTOR tol test. A residual that stalls above both is a failure whose reason
+    names it. The step is halved until ||F|| decreases (Armijo-like, no sufficient-decrease
     constant) down to ``min_damping``; below that the solve is declared failed ("line search
     failed"), never silently accepted.
 
@@ -196,14 +215,17 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                     monitor(it, norm)
                 continue
         try:
-            last = (solver or SOLVER).factor(J(u), free)
+            Jm = J(u)
+            last = (solver or SOLVER).factor(Jm, free)
             du = last(-r)
         except RuntimeError as err:  # singular factor
             return NewtonResult(u, False, it - 1, norm, history, f"linear solve failed: {err}")
         if not np.all(np.isfinite(du)):
             return NewtonResult(u, False, it - 1, norm, history, "Newton step not finite")
-        at_floor = (norm <= FLOOR_FACTOR * tol
-                    and np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free]))))
+        tiny = np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free])))
+        floor = (rounding_floor(Jm, u, free) if tiny and norm > tol and tol >= STRICT_BELOW
+                 else 0.0)
+        at_floor = tiny and norm <= FLOOR_FACTOR * max(tol, floor)
         alpha = 1.0
         while True:
             trial = u.copy()
@@ -215,28 +237,39 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                 break
             if at_floor:
                 return NewtonResult(u, True, it - 1, norm, history,
-                                    "step below tolerance, the residual at its rounding floor")
+                                    _at_floor(norm, tol, floor))
             alpha *= 0.5
             if alpha < min_damping:
-                tiny = np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free])))
                 return NewtonResult(u, False, it, norm, history,
-                                    f"the residual stalls at {norm:.3g} (its rounding floor "
-                                    f"here), above the tolerance {tol:.3g}" if tiny
-                                    else "line search failed")
+                                    f"the residual stalls at {norm:.3g}, above the tolerance "
+                                    f"{tol:.3g} and {FLOOR_FACTOR:g} x its rounding floor "
+                                    f"{floor:.3g}" if tiny else "line search failed")
         u, r, norm = trial, r_trial, n_trial
         history.append(norm)
         report("newton", it, norm, tol)
         if monitor:
             monitor(it, norm)
-        if alpha == 1.0 and np.max(np.abs(du)) <= step_tol * (1.0 + np.max(np.abs(u[free]))):
+        if alpha == 1.0 and tiny:
             if norm <= FLOOR_FACTOR * tol:
                 return NewtonResult(u, True, it, norm, history, "step below tolerance")
-            # the iterate no longer moves but the residual stays above the tolerance: a
-            # tolerance below what the residual's assembly resolves, never an answer
+            floor = rounding_floor(J(u), u, free) if tol >= STRICT_BELOW else 0.0
+            if norm <= FLOOR_FACTOR * floor:
+                return NewtonResult(u, True, it, norm, history, _at_floor(norm, tol, floor))
+            # the iterate no longer moves but the residual stays above the tolerance and
+            # the rounding floor: never an answer
             return NewtonResult(u, False, it, norm, history,
-                                f"the residual stalls at {norm:.3g} (its rounding floor "
-                                f"here), above the tolerance {tol:.3g}")
+                                f"the residual stalls at {norm:.3g}, above the tolerance "
+                                f"{tol:.3g} and {FLOOR_FACTOR:g} x its rounding floor "
+                                f"{floor:.3g}")
     return NewtonResult(u, norm <= tol, max_iter, norm, history, "iteration limit")
+
+
+def _at_floor(norm, tol, floor) -> str:
+    if norm <= FLOOR_FACTOR * tol:
+        return "step below tolerance, the residual at its rounding floor"
+    return (f"step below tolerance, the residual {norm:.3g} at its rounding floor {floor:.3g} "
+            f"(eps |J| |u|): the tolerance {tol:.3g} is below what double precision resolves "
+            "here")
 
 
 def _chord_step(F, solve, u, r, free):

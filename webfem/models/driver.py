@@ -231,9 +231,10 @@ def _ok(info: SolveInfo, why) -> bool:
 
 
 def _hopeless(info: SolveInfo) -> bool:
-    """A failure no other start or finer mesh mends: the residual stalls at its rounding
-    floor above the tolerance (a finer mesh only raises the floor)."""
-    return "rounding floor" in info.reason
+    """A failure no other start or finer mesh mends: the Newton correction vanishes while
+    the residual stays above the tolerance and its rounding floor (a finer mesh only raises
+    the floor)."""
+    return "the residual stalls" in info.reason
 
 
 def _answer(disc, case, prm, options, restart):
