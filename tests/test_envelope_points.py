@@ -117,7 +117,6 @@ SLOW = [
     pytest.param(point("newsprint", 0.07928832162301212, 275.0477313669829, 175.68854107634505,
                        0.023007897046516648, 46.78751422867414, 46.78751422867414,
                        0.0025600018619533565, 0.0005998136144476655, 0.00042746171007085337),
-                 marks=pytest.mark.xfail(strict=True, reason=TIMEOUT),
                  id="39-newsprint-idler-grooved-narrow-fast"),
     pytest.param(point("foil", 0.13835512815918824, 113.08653534109646, 167.05998496281953,
                        0.030327718615621842, 34.788077504227594, 0.0, 0.0008521736914234697,
@@ -127,14 +126,10 @@ SLOW = [
     pytest.param(point("board", 0.09322702927739941, 39.888123256518746, 42.24623437101128,
                        0.01990908307497629, 24.494259403758267, 0.0, 0.0007008183524727319,
                        0.0002852014280292631, 0.00015068353529605068),
-                 marks=pytest.mark.xfail(strict=True, reason="groove depth continuation "
-                                         "failed at 1/64 of the depth: " + GROOVE),
                  id="143-board-held-grooved-narrow"),
     pytest.param(point("newsprint", 0.06114512740899566, 181.56246933001026, 14.475138014112687,
                        0.3401409238960507, 9.736536174424273, 9.736536174424273,
                        0.0006895281140219222, 0.00033097577968699103, 0.0007459527643714616),
-                 marks=pytest.mark.xfail(strict=True, reason="converged to a gap <= 0 on "
-                                         "every mesh: " + GROOVE + " and item 1"),
                  id="179-newsprint-idler-grooved-inadmissible"),
     pytest.param(point("PET", 0.07268047090000081, 239.5257106181927, 129.97582458695916,
                        1.709635318231127, 0.6521185056353574, 0.0, 0.002635619488070767,

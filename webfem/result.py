@@ -97,6 +97,16 @@ class Film(ReadOnlyMapping):
         return f"Film({len(self.points)} vertices, {len(self.quads)} quadrilaterals)"
 
 
+class Rebuild:
+    """A solver object kept as the recipe that builds it again (:meth:`Result.state`)."""
+
+    def __init__(self, build, *args, **kwargs):
+        self.build, self.args, self.kwargs = build, args, kwargs
+
+    def __call__(self):
+        return self.build(*self.args, **self.kwargs)
+
+
 @dataclass(frozen=True, repr=False)
 class Diagnostics(ReadOnlyMapping):
     """How a solve went: residual ``history`` per iteration, closing ``reason``,
@@ -184,8 +194,11 @@ class Result:
     def state(self, name: str):
         """The solver's internal object ``name`` ("problem", "state": the discrete problem
         and the DOF vector of the answer), for inspection in the process that solved; None
-        after :meth:`slim` (continuation reads :attr:`restart`)."""
-        return (self.diagnostics.solver or {}).get(name)
+        after :meth:`slim` (continuation reads :attr:`restart`). A 2-D problem is built
+        again on each call from its nodes (a result holding its bases and assembly maps
+        kept hundreds of MB alive per result)."""
+        value = (self.diagnostics.solver or {}).get(name)
+        return value() if isinstance(value, Rebuild) else value
 
     def __getitem__(self, key: str) -> Any:
         return self.summary[key]

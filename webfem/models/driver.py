@@ -98,6 +98,12 @@ class Discretisation:
         """The 2-D film's fields (None for a 1-D model)."""
         return None
 
+    def kept(self, problem):
+        """What a result keeps of the discrete problem (:meth:`webfem.result.Result.state`):
+        the problem itself by default (a 1-D problem is small and the model's cache holds
+        it anyway)."""
+        return problem
+
     def state(self, case: Case, problem, u, start: Start) -> State:
         """What a later solve restarts from."""
         return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())

@@ -25,7 +25,7 @@ from ..fem.film_problem import FoilBearing2D
 from ..fem.grooves import GroovePattern, choose_domain, groove_nodes
 from ..fem.outcome import SolveInfo
 from ..fem.transfer import width_nodes
-from ..result import Result, State
+from ..result import Rebuild, Result, State
 from . import fe1d
 from .driver import Discretisation, Start, solve_fe
 from .fields import film_fields
@@ -152,6 +152,10 @@ class _Film(Discretisation):
 
     def film(self, case, problem, u, prm):
         return film_fields(case, problem, u, prm)
+
+    def kept(self, problem):
+        build, args, kwargs = problem.recipe()
+        return Rebuild(build, *args, **kwargs)
 
     def state(self, case: Case, problem, u, start: Start) -> State:
         return State(case, NAME, problem.X.copy(), np.asarray(u).copy(), problem.Z.copy(),
