@@ -105,8 +105,11 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass, self._system = None, None
-        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering)
-        self.solver = PatternSolver()
+        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering), each
+        #: factorised with a unit diagonal (a landing web's contact stiffness otherwise
+        #: forces row exchanges that undo the ordering: :class:`~webfem.fem.newton.
+        #: PatternSolver`)
+        self.solver = PatternSolver(scaled=True)
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
