@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..case import Case
-from ..fem import forms
+from ..fem import continuation, forms
 from ..fem.film_problem import FoilBearing2D
 from ..fem.grooves import GroovePattern, choose_domain, groove_nodes
 from ..fem.outcome import SolveInfo
@@ -89,6 +89,22 @@ class _Film(Discretisation):
         spent = SolveInfo(converged=True, iterations=one["iterations"])
         return Start(problem, problem.start_from_line(p1, u1, prm), info=spent,
                      line=one.restart, kept={"line_result": one})
+
+    def safe_start(self, case: Case, prm, options: FE2DOptions) -> Start | None:
+        """On a grooved roller, the starting mesh solved along the groove-depth continuation
+        from the smooth film (:func:`webfem.fem.continuation.groove_depth`): the driver's
+        second try when the direct start failed or converged to an inadmissible branch (on
+        8-10 mm newsprint webs at 25-27 m/s the direct start put the web through the roller
+        at the wrap's entry, the continuation reached an admissible answer on the same
+        mesh). None on a smooth roller, with Picard, or when it does not converge."""
+        if not case.grooved or options.method != "newton":
+            return None
+        start = self.start(case, prm, options, None)
+        u, info = continuation.groove_depth(start.problem, start.u0, prm, options.tol,
+                                            options.max_iter, start.info)
+        if not info.converged:
+            return None
+        return Start(start.problem, u, info=info, line=start.line, kept=start.kept)
 
     def remeshed(self, problem, u, prm, X, Z, options):
         """The problem on the nodes X x Z (coarser or finer; the same grooves and domain)
