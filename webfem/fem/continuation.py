@@ -23,7 +23,7 @@ from .grooves import GroovePattern
 from .outcome import SolveInfo
 
 __all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "FIRST_TRY",
-           "FIRST_DEPTH"]
+           "FIRST_DEPTH", "STEP_ITER"]
 
 #: Newton steps a direct attempt (or the jump to s = 1) gets before the stepped path.
 FIRST_TRY = 25
@@ -73,6 +73,9 @@ def web_width(problem, line_problem, line_state, prm, tol, max_iter, failed: Sol
     return geometric(at, start, prm, tol, max_iter, failed, 16.0, "width")
 
 
+#: Newton steps a step of the depth continuation gets before it is halved.
+STEP_ITER = 20
+
 #: The depth continuation's first step: grooves this deep relative to the smooth film's
 #: thinnest gap (or the roughness, where that is larger), and at most 1/64 of the depth.
 FIRST_DEPTH = 0.25
@@ -108,7 +111,10 @@ def groove_depth(problem, u0, prm, tol, max_iter, failed: SolveInfo):
         return u, info
     film = max(float(np.min(flat.gap(u, prm, flat.X))), float(prm.S))
     first = min(1.0 / 64.0, FIRST_DEPTH * film / g.depth) if g.depth > 0.0 else 1.0
-    return geometric(at, u, prm, tol, max_iter, info, first, "groove depth")
+    # a step that has not converged in STEP_ITER Newton steps is halved: converged steps
+    # took 3-18 on the grooved webs of benchmarks/groove_scan.py, failed ones the whole
+    # budget (40) before they were halved
+    return geometric(at, u, prm, tol, min(max_iter, STEP_ITER), info, first, "groove depth")
 
 
 def eshel_elrod(problem, prm, tol, max_iter, before: SolveInfo | None = None):
