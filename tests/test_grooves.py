@@ -22,7 +22,9 @@ from webfem.models import auto, closed, fe1d, fe2d
 from webfem.models.options import FE2DOptions
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
+from webfem.models.groove_domain import sag_warning
 
+from conftest import GROOVED as BASE_GROOVED, PET_IDLER_GROOVED
 from orders import GAP_GROOVED
 
 GROOVED = {"roller.groove_pitch": 1.27e-3, "roller.groove_width": 0.25e-3,
@@ -191,8 +193,13 @@ def test_auto_domain_and_summary():
     assert r["land_fraction"] == pytest.approx(c.land_fraction)
     assert 0.0 < r["contact_share"] <= r["contact_share_lands"] <= 1.0
     opts = FE2DOptions()
-    assert fe2d.groove_domain(c.updated({"web.width": 12.6e-3}), opts)[1] == "full"
-    assert fe2d.groove_domain(c.updated({"web.width": 12.8e-3}), opts)[1] == "cell"
+    # auto chose the cell by the edges' estimated effect, and says so with its figures
+    assert "estimated to change the periodic cell's answer by" in r["groove_domain"]
+    # without the cell's estimate: the full width of a web too narrow for an edge strip,
+    # else the strip
+    assert fe2d.groove_domain(c.updated({"web.width": 30e-3}), opts)[1] == "full"
+    assert fe2d.groove_domain(c.updated({"web.width": 0.1}), opts)[1] == "strip"
+    assert fe2d.groove_domain(c, opts.replace(grooves="cell"))[1] == "cell"
     assert fe2d.groove_domain(c, opts.replace(grooves="full"))[1] == "full"
     assert fe2d.groove_domain(Case(), opts)[0] is None
 
@@ -205,8 +212,8 @@ def test_cell_and_full_width_agree_on_a_wide_web():
     width): measured 0.11 % in h_center and 0.74 % in h_min (the stated mesh errors are
     1e-5), held to 0.5 % and 2 %. The width averages mu and the contact share differ by
     what the edge pitches, 2 pitch / width = 12.5 % of the width, carry differently:
-    measured 0.48 % and 0.25 %, held to 2 %, well inside the 12.5 % bound the cell's summary
-    states (its groove_domain text)."""
+    measured 0.48 % and 0.25 %, held to 2 %. The cell's groove_domain states the edges'
+    estimated effect (:func:`webfem.fem.grooves.edge_effect`), which bounds each change."""
     c = Case().updated({"roller.groove_pitch": 2e-3, "roller.groove_width": 0.5e-3,
                         "roller.groove_depth": 0.25e-3, "web.width": 0.032})
     cell = fe2d.solve(c, grooves="cell")
@@ -215,7 +222,9 @@ def test_cell_and_full_width_agree_on_a_wide_web():
     assert full["h_min"] == pytest.approx(cell["h_min"], rel=2e-2)
     for key in ("mu", "contact_share"):
         assert full[key] == pytest.approx(cell[key], rel=2e-2), key
-    assert "12 % of the width, a bound on the error" in cell["groove_domain"]
+    est = float(cell["groove_domain"].split("answer by ")[1].split(" ")[0])
+    for key in ("h_center", "h_min", "mu"):
+        assert abs(full[key] / cell[key] - 1.0) <= est, (key, est)
 
 
 # -- the bundled case ------------------------------------------------------------------------
@@ -249,3 +258,50 @@ def test_grooves_sizing_refuses_bad_lists(capsys):
     assert "comma-separated" in capsys.readouterr().err
     assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "0"]) == 2
     assert "groove pitch = 0.0" in capsys.readouterr().err
+
+
+# -- the edge strip and the sag warning (issue 22) --------------------------------------------
+#: 4 mm pitch, 1 mm wide and 0.5 mm deep grooves under an 80 mm newsprint web: 20 pitches
+#: across, too many for the full width to be cheap, too few for the periodic cell to answer
+#: within 1 % (the edges' estimated effect is 1.9 %).
+STRIP_CASE = {"web.width": 0.08, "roller.groove_pitch": 4e-3, "roller.groove_width": 1e-3,
+              "roller.groove_depth": 0.5e-3}
+
+
+def test_auto_solves_the_edge_strip_where_the_edges_matter():
+    r = auto.solve(BASE_GROOVED.updated(STRIP_CASE))
+    assert r["converged"] and r["model_used"] == "fe2d"
+    text = r["groove_domain"]
+    assert text.startswith("edge strip") and "against the periodic cell" in text
+    est = float(text.split("answer by ")[1].split(" ")[0])
+    assert est > 0.01                      # above edge_tol: the cell did not answer
+
+
+@pytest.mark.slow
+def test_the_edge_strip_answers_as_the_full_width():
+    """The strip (the outer lands of each half solved, the periodic interior as its weighted
+    innermost land and groove) against the full width of the same web: measured 1.7e-5 in
+    h_center, 1.6e-4 in h_min and 1.0e-4 in mu, inside the stated errors (4e-4 or more),
+    at 50k against 121k unknowns (2.6 s against 8.3 s)."""
+    c = BASE_GROOVED.updated(STRIP_CASE)
+    strip = auto.solve(c)
+    full = fe2d.solve(c, grooves="full")
+    assert strip["groove_domain"].startswith("edge strip")
+    assert full["n_dofs"] > 2 * strip["n_dofs"]
+    for q in ("h_center", "h_min", "mu"):
+        err = abs(strip[q] - full[q]) / abs(full[q])
+        assert err <= strip[f"error_{q}"] + full[f"error_{q}"], (q, err)
+
+
+def test_a_thin_web_sagging_into_wide_grooves_is_warned():
+    """12 um PET over 2 mm grooves under 2 kPa sags ~0.12 mm (p g^4 / 384 D), far more than
+    a land gap of microns: the answer says webfem holds the web flat. 36 um PET over the
+    bundled 0.5 mm grooves sags 0.2 um, and the base grooved newsprint 0.1 nm: no warning."""
+    thin = PET_IDLER_GROOVED.updated({"web.thickness": 12e-6, "roller.groove_width": 2e-3,
+                                      "roller.groove_pitch": 6e-3})
+    said = sag_warning(thin, 1.4e-6)
+    assert "sags into its 2 mm grooves" in said and "web.modulus_md" in said
+    assert sag_warning(PET_IDLER_GROOVED, 0.78e-6) == ""
+    assert sag_warning(thin, 0.0) == ""              # no land gap: nothing to compare with
+    r = auto.solve(BASE_GROOVED)
+    assert not any("sags" in w for w in r["warnings"])

@@ -5,8 +5,9 @@
   by s from 0 to 1;
 * :func:`web_width`: the 2-D film from a web 16 times wider (close to the 1-D solution it
   starts from) down to the true width;
-* :func:`groove_depth`: the 2-D film on a grooved roller from grooves 1/64 as deep (close to
-  the smooth roller) to the true depth.
+* :func:`groove_depth`: the 2-D film on a grooved roller from the smooth roller (depth 0, on
+  the same mesh; itself by :func:`web_width` where it must) through grooves a quarter of the
+  film deep to the true depth.
 
 Each returns ``(u, SolveInfo)``; the info counts every Newton step of the path and says
 where it stopped when it fails. The problems are duck-typed (:class:`webfem.fem.film_problem.
@@ -21,7 +22,8 @@ from ..progress import stage
 from .grooves import GroovePattern
 from .outcome import SolveInfo
 
-__all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "FIRST_TRY"]
+__all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "FIRST_TRY",
+           "FIRST_DEPTH", "STEP_ITER"]
 
 #: Newton steps a direct attempt (or the jump to s = 1) gets before the stepped path.
 FIRST_TRY = 25
@@ -31,24 +33,29 @@ def geometric(problem_at, u, prm, tol, max_iter, failed: SolveInfo, f: float, wh
     """Newton along a factor f stepped geometrically (by 4) to 1 from ``f``: each step starts
     from the last converged state on ``problem_at(f)``; a failed step is halved (in log f),
     and the path fails when the step falls below 1 %. ``failed``: the attempt that led
-    here (its iterations are counted)."""
+    here (its iterations are counted).
+
+    Each step starts from the last state, not from a secant predictor through the last two:
+    on grooved narrow webs the predicted starts converged to a branch with the web through
+    the roller at the wrap's entry (2 of 10 hard points of benchmarks/groove_scan.py) and
+    took 1.0-2.0 times the iterations."""
     done = failed
-    f_prev = None
+    last = None                 # the factor of the last converged step
     while True:
         with stage(f"{what} continuation, {f:.3g} x"):
             v, info = problem_at(f).plain_newton(u, prm, tol, max_iter)
         done = info.after(done)
         if info.converged:
-            u, f_prev = v, f
+            u, last = v, f
             if f == 1.0:
                 return u, done.noted(f"after continuation in {what}")
             f = max(1.0, f / 4.0) if f > 1.0 else min(1.0, 4.0 * f)
         else:
-            if f_prev is None or abs(np.log(f / f_prev)) < np.log(1.01):
+            if last is None or abs(np.log(f / last)) < np.log(1.01):
                 done.reason = f"{what} continuation failed at {f:.3g} x the {what}: " \
                               + info.reason
                 return v, done
-            f = float(np.sqrt(f * f_prev))
+            f = float(np.sqrt(f * last))
 
 
 def web_width(problem, line_problem, line_state, prm, tol, max_iter, failed: SolveInfo):
@@ -66,15 +73,48 @@ def web_width(problem, line_problem, line_state, prm, tol, max_iter, failed: Sol
     return geometric(at, start, prm, tol, max_iter, failed, 16.0, "width")
 
 
+#: Newton steps a step of the depth continuation gets before it is halved.
+STEP_ITER = 20
+
+#: The depth continuation's first step: grooves this deep relative to the smooth film's
+#: thinnest gap (or the roughness, where that is larger), and at most 1/64 of the depth.
+FIRST_DEPTH = 0.25
+
+
 def groove_depth(problem, u0, prm, tol, max_iter, failed: SolveInfo):
-    """Newton from grooves 1/64 as deep as ``problem``'s (close to the smooth roller the
-    start comes from) to their true depth."""
+    """Newton from the smooth roller (grooves of depth 0 on ``problem``'s mesh) to the true
+    groove depth, in steps of 4 (:func:`geometric`) from grooves :data:`FIRST_DEPTH` times
+    the smooth film's thinnest gap deep.
+
+    The smooth film is solved first, from ``u0``, and where that fails on a web with edges,
+    by :func:`web_width` from the 1-D state the problem started from (``problem.line_start``):
+    a narrow web (lambda ~ 1) fails a direct start even without grooves, and the grooves'
+    continuation then failed at its first step (5 of the 33 webs of 5-20 mm in
+    benchmarks/groove_scan.py). The first depth follows the film: a groove a few times
+    deeper than the film it opens under changes the film at once (a 499 um groove's 1/64,
+    7.8 um, under a 1.2 um film failed; a quarter of the film converged, each later step
+    in 4-9 Newton steps)."""
     g = problem.grooves
 
     def at(f):
         return problem.variant(grooves=GroovePattern(g.pitch, g.width, g.depth * f))
 
-    return geometric(at, u0, prm, tol, max_iter, failed, 1.0 / 64.0, "groove depth")
+    flat = at(0.0)
+    with stage("groove depth continuation, the smooth film"):
+        u, info = flat.plain_newton(u0, prm, tol, max_iter)
+    info = info.after(failed)
+    if not info.converged and problem.web_edges and problem.line_start is not None:
+        u, info = web_width(flat, *problem.line_start, prm, tol, max_iter, info)
+    if not info.converged:
+        info.reason = ("groove depth continuation failed: the smooth film (depth 0) did not "
+                       "converge: " + info.reason)
+        return u, info
+    film = max(float(np.min(flat.gap(u, prm, flat.X))), float(prm.S))
+    first = min(1.0 / 64.0, FIRST_DEPTH * film / g.depth) if g.depth > 0.0 else 1.0
+    # a step that has not converged in STEP_ITER Newton steps is halved: converged steps
+    # took 3-18 on the grooved webs of benchmarks/groove_scan.py, failed ones the whole
+    # budget (40) before they were halved
+    return geometric(at, u, prm, tol, min(max_iter, STEP_ITER), info, first, "groove depth")
 
 
 def eshel_elrod(problem, prm, tol, max_iter, before: SolveInfo | None = None):

@@ -3,7 +3,9 @@
 The film is solved on [X_s, X_e] x [0, lambda] (half width, symmetry at the centreline) or
 [-lambda, lambda] (full width) in scaled coordinates, with Q2 (or Q1) quadrilaterals on the
 tensor product of the web's nodes in X and nodes across the width; a grooved roller's periodic
-cell is [0, pitch/2] with symmetry on both sides. The web is the Hermite beam/membrane of the
+cell is [0, pitch/2] with symmetry on both sides, and a wide web's edge strip [z_c, lambda]
+(z_c a land centre, a symmetry line) stands for the half width: its innermost half land and
+groove, weighted, for the periodic interior [0, z_c] (:attr:`FilmConfig.strip`). The web is the Hermite beam/membrane of the
 1-D model, loaded by the width-averaged film pressure plus the asperity contact; the two
 meshes share their X nodes and the web's basis is evaluated exactly at the film's quadrature
 points (:mod:`webfem.fem.transfer`). The weak forms are :mod:`webfem.fem.forms`', assembled by
@@ -33,7 +35,7 @@ from .picard import frozen_coefficient_picard
 from .systems import FilmSystem, width_load
 from .transfer import film_mesh, interpolate_values, quadrature_matrices, tensor_interpolation
 
-__all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS"]
+__all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS", "strip_weights"]
 
 #: The film-only solve before a coupled Newton stops at this fraction of its first residual:
 #: it only gives Newton a pressure consistent with the web (one or two steps; solving it to
@@ -50,19 +52,46 @@ DIRECT_STEPS = 6
 class FilmConfig:
     """What a 2-D problem is made of besides its nodes: the pressure element ``order`` (1 or
     2), the roller's ``grooves`` (None: smooth), whether Z ends at the ``web_edges`` (False:
-    the periodic cell of a grooved roller) and ``ambient_grooves`` (P = 0 in the grooves: the
-    deep-groove limit, for checks)."""
+    the periodic cell of a grooved roller), ``ambient_grooves`` (P = 0 in the grooves: the
+    deep-groove limit, for checks) and ``strip``.
+
+    ``strip``: Z[0] > 0 is a land centre inside the web (a symmetry line) and Z[-1] the web's
+    edge; the film on [Z[0], Z[-1]] stands for the half width [0, Z[-1]]: the interior
+    [0, Z[0]] is periodic, made of Z[0]/pitch lands and grooves like the innermost ones, so
+    the innermost half land counts 1 + 2 Z[0]/pitch times and the innermost groove
+    1 + Z[0]/pitch times in the width average the web carries. Valid where the web's edges
+    no longer reach the innermost pitch (the strip is wide enough), which the model chooses
+    (:mod:`webfem.models.fe2d`)."""
 
     order: int = 2
     grooves: GroovePattern | None = None
     web_edges: bool = True
     ambient_grooves: bool = False
+    strip: bool = False
 
     def __post_init__(self):
         if self.order not in (1, 2):
             raise ValueError(f"order = {self.order!r} is not valid: must be 1 or 2")
+        if self.strip and (self.grooves is None or not self.web_edges):
+            raise ValueError("an edge strip needs grooves and a web edge")
         object.__setattr__(self, "ambient_grooves",
                            bool(self.ambient_grooves) and self.grooves is not None)
+
+
+def strip_weights(grooves: GroovePattern, Z: np.ndarray, zq: np.ndarray) -> np.ndarray:
+    """The weights of an edge strip's quadrature points at ``zq`` (:attr:`FilmConfig.
+    strip`): 1 + 2 Z[0]/pitch on the innermost half land [Z[0], Z[0] + land/2], 1 + Z[0]/pitch
+    on the innermost groove after it, 1 elsewhere; they add up to the half width Z[-1].
+
+    >>> g = GroovePattern(pitch=1.0, width=0.25, depth=1.0)
+    >>> strip_weights(g, np.array([3.0, 8.0]), np.array([3.1, 3.5, 3.9, 5.0])).tolist()
+    [7.0, 4.0, 1.0, 1.0]
+    """
+    z0, p = float(Z[0]), grooves.pitch
+    half_land = z0 + 0.5 * grooves.land
+    tol = 1e-9 * p
+    return np.where(zq < half_land + tol, 1.0 + 2.0 * z0 / p,
+                    np.where(zq < half_land + grooves.width + tol, 1.0 + z0 / p, 1.0))
 
 
 class FoilBearing2D:
@@ -72,17 +101,20 @@ class FoilBearing2D:
 
     def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2,
                  grooves: GroovePattern | None = None, web_edges: bool = True,
-                 ambient_grooves: bool = False):
-        self.config = FilmConfig(order, grooves, bool(web_edges), ambient_grooves)
+                 ambient_grooves: bool = False, strip: bool = False):
+        self.config = FilmConfig(order, grooves, bool(web_edges), ambient_grooves,
+                                 bool(strip))
         self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
         self.order, self.grooves = order, grooves
         self.web_edges, self.ambient_grooves = self.config.web_edges, \
             self.config.ambient_grooves
-        self.width = float(self.Z[-1] - self.Z[0])
+        self.strip = self.config.strip
+        #: the width the film stands for: the domain's, or for a strip the half web's
+        self.width = float(self.Z[-1] - (0.0 if self.strip else self.Z[0]))
         self.line = line_mesh(self.X)
         # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
         self.wbasis = Basis(self.line, ElementLineHermite(), intorder=6)
-        self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges)
+        self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
         self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                             intorder=4 if order == 2 else 3)
         self.T = quadrature_matrices(self.fbasis, self.wbasis)
@@ -92,6 +124,10 @@ class FoilBearing2D:
         zq = np.asarray(self.fbasis.global_coordinates()[1])
         #: groove depth Delta(Z) at the film's quadrature points (0: land or smooth)
         self.groove_q = grooves.depth_at(zq) if grooves is not None else np.zeros_like(zq)
+        #: how many times each quadrature point counts in the width average (1 but in a
+        #: strip's innermost half land and groove)
+        self.weight_q = strip_weights(grooves, self.Z, zq) if self.strip \
+            else np.ones_like(zq)
         fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
         if self.ambient_grooves:
             zd = self.fbasis.doflocs[1]
@@ -105,8 +141,11 @@ class FoilBearing2D:
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
         self._mass, self._system = None, None
-        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering)
-        self.solver = PatternSolver()
+        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering), each
+        #: factorised with a unit diagonal (a landing web's contact stiffness otherwise
+        #: forces row exchanges that undo the ordering: :class:`~webfem.fem.newton.
+        #: PatternSolver`)
+        self.solver = PatternSolver(scaled=True)
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
@@ -146,8 +185,10 @@ class FoilBearing2D:
     def system(self) -> FilmSystem:
         """The assembly of this mesh's film + web system, built on first use."""
         if self._system is None:
-            self._system = FilmSystem(self.fbasis, self.wbasis, self.T, self.width,
-                                      self.groove_q)
+            # the strip's weights enter as a width per quadrature point: the web's load
+            # (1/width) int P dZ counts a weighted point's pressure that many times
+            width = self.width / self.weight_q if self.strip else self.width
+            self._system = FilmSystem(self.fbasis, self.wbasis, self.T, width, self.groove_q)
         return self._system
 
     def residual(self, u, prm) -> np.ndarray:
@@ -181,17 +222,30 @@ class FoilBearing2D:
         # the results ask for the pressure of one state several times (fields, summary,
         # admissibility): the projection is kept for the last film DOFs
         if self._average is None or not np.array_equal(self._average[0], p):
-            Pq = interpolate_values(self.fbasis, p).ravel()
+            Pq = interpolate_values(self.fbasis, p).ravel() * self.weight_q.ravel()
             self._average = (p.copy(), self._mass_solve(width_load(self.T, Pq, self.width)))
         return self._average[1].copy()
 
     def land_average(self, u) -> np.ndarray:
         """Hermite DOFs of the film pressure averaged over the lands only (as
         :meth:`width_average`; the whole width on a smooth roller)."""
-        land = (self.groove_q.ravel() == 0.0).astype(float)
+        land = (self.groove_q.ravel() == 0.0) * self.weight_q.ravel()
         Pq = interpolate_values(self.fbasis, self._split(u)[0]).ravel()
-        width = float(np.sum(self.T["dx"] * land)) / float(np.sum(self.T["dx"])) * self.width
+        width = float(np.sum(self.T["dx"] * land)) / float(
+            np.sum(self.T["dx"] * self.weight_q.ravel())) * self.width
         return self._mass_solve(width_load(self.T, land * Pq, width))
+
+    def groove_pressure_ratio(self, u, X) -> float:
+        """The film pressure over the grooves relative to that over the lands, summed over
+        the points X (the wrap): 0 where the grooves vent to ambient, 1 where they hold the
+        lands' pressure (as a smooth roller)."""
+        weights = self.weight_q.ravel() * self.T["dx"]
+        land = float(np.sum(weights * (self.groove_q.ravel() == 0.0)) / np.sum(weights))
+        if land >= 1.0:
+            return 1.0
+        Pw, Pl = self.at(X, self.width_average(u)), self.at(X, self.land_average(u))
+        Pg = (Pw - land * Pl) / (1.0 - land)
+        return float(np.sum(Pg) / np.sum(Pl)) if np.sum(Pl) > 0.0 else 1.0
 
     def pressure(self, u, X) -> np.ndarray:
         """Width-averaged film pressure at X (through :meth:`width_average`)."""

@@ -58,10 +58,19 @@ class PatternSolver:
     The ordering depends on the pattern alone and every factorisation of a pattern takes the
     same path, so a solve's numbers do not depend on what was solved before it in the
     process (a plan kept from an earlier solve changes the time, never the answer).
+
+    ``scaled``: factorise S A S with S = |diag A|^(-1/2) (1 where the diagonal is 0) and
+    solve through it. Where the web rests on its asperities the 2-D film + web Jacobian
+    mixes contact stiffnesses of 1e10 with film entries of 1e-5 (scaled units): a third of
+    the film's diagonal pivots then fall below 0.01 of their column, SuperLU exchanges rows
+    and the fill-reducing ordering is lost (a grooved cell of 7,315 unknowns filled 14.4 M
+    entries in 2.1 s; scaled, 0.17 M in 4 ms). The scaled system has a unit diagonal, the
+    same pattern and ordering, and the same solution to rounding.
     """
 
-    def __init__(self, size: int = 6):
+    def __init__(self, size: int = 6, scaled: bool = False):
         self.size = size
+        self.scaled = bool(scaled)
         self._plans: dict = {}         # (id(indices), id(indptr), free bytes) -> plan
 
     @staticmethod
@@ -106,13 +115,26 @@ class PatternSolver:
             plan = self._plans[key] = self._plan(A, free)   # keeps the ids unique
         _, _, B, gather, inv = plan
         B.data = A.data[gather]
+        if not self.scaled:
+            lu = self._factor(B, "NATURAL")
+
+            def solve(b):
+                x = np.empty_like(b)
+                x[inv] = lu.solve(b[inv])
+                return x
+            return solve
+        d = np.abs(B.diagonal())
+        s = np.where(d > 0.0, 1.0 / np.sqrt(np.where(d > 0.0, d, 1.0)), 1.0)
+        rows = B.indices
+        cols = np.repeat(np.arange(B.shape[1]), np.diff(B.indptr))
+        B.data *= s[rows] * s[cols]
         lu = self._factor(B, "NATURAL")
 
-        def solve(b):
+        def solve_scaled(b):
             x = np.empty_like(b)
-            x[inv] = lu.solve(b[inv])
+            x[inv] = s * lu.solve(s * b[inv])
             return x
-        return solve
+        return solve_scaled
 
 
 def _factorised(A) -> Callable[[np.ndarray], np.ndarray]:

@@ -143,11 +143,13 @@ class LineSystem:
 class FilmSystem:
     """The 2-D film (``fbasis``, Q1/Q2) coupled to the 1-D web (``wbasis``, Hermite) through
     the transfer matrices ``T`` (:func:`webfem.fem.transfer.quadrature_matrices`); the film
-    averaged over ``width``; ``groove``: the groove depth at the film's quadrature points
-    (None: smooth). Unknowns ``[p (film DOFs), w (web DOFs)]``."""
+    averaged over ``width`` (a number, or one per quadrature point: a grooved web's edge
+    strip weighs its innermost pitch); ``groove``: the groove depth at the film's quadrature
+    points (None: smooth). Unknowns ``[p (film DOFs), w (web DOFs)]``."""
 
-    def __init__(self, fbasis, wbasis, T, width: float, groove=None):
-        self.fbasis, self.wbasis, self.T, self.width = fbasis, wbasis, T, float(width)
+    def __init__(self, fbasis, wbasis, T, width, groove=None):
+        self.fbasis, self.wbasis, self.T = fbasis, wbasis, T
+        self.width = np.asarray(width, float) if np.ndim(width) else float(width)
         self.groove = 0.0 if groove is None else np.asarray(groove, float)
         self.f = f = BasisData(fbasis)
         self.w = w = BasisData(wbasis, hess=(0,))

@@ -46,11 +46,12 @@ def width_nodes(lam: float, level: int = 0, half: bool = True, fine: float = 0.2
     return Z if half else np.concatenate([-Z[:0:-1], Z])
 
 
-def film_mesh(X: np.ndarray, Z: np.ndarray, web_edges: bool = True):
+def film_mesh(X: np.ndarray, Z: np.ndarray, web_edges: bool = True, strip: bool = False):
     """Tensor-product quadrilateral mesh with boundaries ``ends`` (X = X_s, X_e), ``edges``
     (the web edges, Z = +-lam) and, for the half width, ``symmetry`` (Z = 0).
     ``web_edges=False`` (the periodic cell of a grooved roller): no ``edges``, both sides
-    are ``symmetry``."""
+    are ``symmetry``; ``strip`` (a wide web's edge strip): Z[0] is ``symmetry``, Z[-1] the
+    web's edge."""
     from skfem import MeshQuad
 
     x0, x1, z0, z1 = X[0], X[-1], Z[0], Z[-1]
@@ -59,10 +60,11 @@ def film_mesh(X: np.ndarray, Z: np.ndarray, web_edges: bool = True):
         bnd["symmetry"] = lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1)
         return MeshQuad.init_tensor(np.asarray(X, float),
                                     np.asarray(Z, float)).with_boundaries(bnd)
-    bnd["edges"] = ((lambda p: np.isclose(p[1], z1)) if z0 == 0.0 else
+    inner = z0 == 0.0 or strip
+    bnd["edges"] = ((lambda p: np.isclose(p[1], z1)) if inner else
                     (lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1)))
-    if z0 == 0.0:
-        bnd["symmetry"] = lambda p: np.isclose(p[1], 0.0)
+    if inner:
+        bnd["symmetry"] = lambda p: np.isclose(p[1], z0)
     return MeshQuad.init_tensor(np.asarray(X, float), np.asarray(Z, float)).with_boundaries(bnd)
 
 

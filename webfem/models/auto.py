@@ -69,6 +69,9 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
     quantities, tol = judged(options.quantity), options.tol
     fe2d_options = fe_options(options, FE2DOptions)
     if case.grooved:   # only the 2-D film carries the grooves across the width
+        if options.edge_tol is None:
+            # the periodic cell answers where the web's edges change it by at most tol
+            fe2d_options = fe2d_options.replace(edge_tol=tol)
         r = fe2d.solve_case(case, fe2d_options, raise_on_failure=raise_on_failure)
         return _answer(r, quantities, tol,
                        ["grooved roller: only fe2d solves the land and groove film"])

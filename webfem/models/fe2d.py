@@ -22,7 +22,8 @@ import numpy as np
 from ..case import Case
 from ..fem import continuation, forms
 from ..fem.film_problem import FoilBearing2D
-from ..fem.grooves import GroovePattern, choose_domain, groove_nodes
+from ..fem.grooves import STRIP_PITCHES, STRIP_SCALED, STRIP_UNVENTED, GroovePattern, \
+    choose_domain, edge_effect, graded_groove_nodes, groove_nodes, strip_start, strip_width
 from ..fem.outcome import SolveInfo
 from ..fem.transfer import width_nodes
 from ..result import Rebuild, Result, State
@@ -31,9 +32,10 @@ from .driver import Discretisation, Start, solve_fe
 from .fields import film_fields
 from .options import FE2DOptions
 from .outcome import Facts
+from .groove_domain import domain_text, sag_warning, solve_grooved
 
-__all__ = ["FoilBearing2D", "FILM", "problem_for", "groove_domain", "solve", "solve_case",
-           "NAME"]
+__all__ = ["FoilBearing2D", "FILM", "problem_for", "groove_domain", "sag_warning", "solve",
+           "solve_case", "NAME"]
 
 NAME = "fe2d"
 #: The defaults of :class:`~webfem.models.options.FE2DOptions`, by name (read-only view).
@@ -42,13 +44,23 @@ DEFAULTS = FE2DOptions().to_dict()
 
 def groove_domain(case: Case, options: FE2DOptions):
     """The scaled groove pattern of ``case`` (None: smooth roller) and the domain across the
-    width: "cell", "full" (:func:`webfem.fem.grooves.choose_domain`) or "smooth"."""
+    width the options ask for: "cell", "full", "strip" (:func:`webfem.fem.grooves.
+    choose_domain`; "auto" without the periodic cell's estimate of the edges: the strip,
+    or the full width of a web too narrow for one) or "smooth"."""
     if not case.grooved:
         return None, "smooth"
     r = case.roller
     pattern = GroovePattern(r.groove_pitch / case.x_scale, r.groove_width / case.x_scale,
                             r.groove_depth / case.h_scale)
-    return pattern, choose_domain(case.web.width / r.groove_pitch, options.grooves)
+    return pattern, choose_domain(options.grooves, pattern, case.lam,
+                                  vent=_vent_of(pattern, options))
+
+
+def _vent_of(pattern: GroovePattern, options: FE2DOptions) -> float:
+    """The venting a strip's width stands for: none unless ``strip_width`` says otherwise."""
+    if options.strip_width is None:
+        return 0.0
+    return 1.0 - (options.strip_width - STRIP_SCALED) / STRIP_UNVENTED
 
 
 def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2D:
@@ -60,8 +72,16 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                         fine=options.width_fine)
     elif domain == "cell":
         Z = groove_nodes(pattern, 0.0, 0.5 * pattern.pitch, options.width_fine, options.level)
+    elif domain == "strip":
+        width = options.strip_width or strip_width(pattern.pitch)
+        z_c = strip_start(pattern, case.lam, max(width, STRIP_PITCHES * pattern.pitch))
+        Z = graded_groove_nodes(pattern, z_c, case.lam, [case.lam], options.width_fine,
+                                options.level)
+        return FoilBearing2D(X, Z, order=options.order, grooves=pattern, strip=True,
+                             ambient_grooves=options.groove_pressure == "ambient")
     else:
-        Z = groove_nodes(pattern, 0.0, case.lam, options.width_fine, options.level)
+        Z = graded_groove_nodes(pattern, 0.0, case.lam, [case.lam], options.width_fine,
+                                options.level)
         if not options.symmetry:
             Z = np.concatenate([-Z[:0:-1], Z])
     return FoilBearing2D(X, Z, order=options.order, grooves=pattern,
@@ -120,6 +140,9 @@ class _Film(Discretisation):
     def mesh_text(self, problem, options) -> str:
         if not problem.web_edges:
             where = "periodic groove cell (land centre to groove centre)"
+        elif problem.strip:
+            where = (f"edge strip Z = {problem.Z[0]:.4g}-{problem.Z[-1]:.4g} (a land centre "
+                     "to the web's edge; scaled), its innermost land and groove weighted")
         else:
             where = f"{'half' if options.symmetry else 'full'} width" + (
                 " with its edge lands (a land centred on the web's centreline)"
@@ -134,20 +157,25 @@ class _Film(Discretisation):
                       land_fraction=case.land_fraction, warnings=warnings)
         if problem.grooves is None:
             return Facts(**common)
-        spans = case.web.width / case.roller.groove_pitch
-        if problem.web_edges:
-            domain = f"full width: the web spans {spans:.3g} groove pitches, edge lands included"
-        else:
-            domain = (f"periodic cell: the web spans {spans:.3g} groove pitches; the web's "
-                      f"edges are left out (the edge pitches are "
-                      f"{100 * 2 * case.roller.groove_pitch / case.web.width:.2g} % of the "
-                      f"width, a bound on the error they leave; grooves = \"full\" solves "
-                      f"them)")
+        kind = "strip" if problem.strip else "full" if problem.web_edges else "cell"
+        why = {}
+        if kind == "cell":
+            # a cell asked for by name states the edges' estimated effect too
+            X = np.linspace(-0.5 * case.beta, 0.5 * case.beta, 201)
+            vent = min(max(1.0 - problem.groove_pressure_ratio(u, X), 0.0), 1.0)
+            film = 1.0 - readout.contact_share
+            why = {"vent": vent, "film": film, "tol": options.edge_tol,
+                   "estimate": edge_effect(case.lam, problem.grooves.pitch, vent, film)}
+        domain = domain_text(case, kind, problem.grooves, **why,
+                             width=(case.lam - problem.Z[0]) if problem.strip else None)
         # the share of the lands' load carried by asperity contact, over the wrap
         pts, wts = readout.pts, readout.wts
         Pl = problem.at(pts, problem.land_average(u))
         Pc = forms.contact_law(problem.gap(u, prm, pts), prm.as_form_args())[0]
         share = float(np.sum(Pc * wts) / max(np.sum((Pl + Pc) * wts), 1e-300))
+        sag = sag_warning(case, readout.h_min)
+        if sag:
+            common["warnings"] = warnings + (sag,)
         return Facts(**common, groove_domain=domain, contact_share_lands=share)
 
     def film(self, case, problem, u, prm):
@@ -168,8 +196,14 @@ FILM = _Film()
 
 def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = None,
                raise_on_failure: bool = True) -> Result:
-    """The registry's entry: :func:`solve` with a ready options object."""
-    return solve_fe(FILM, case, options, initial, raise_on_failure)
+    """The registry's entry: :func:`solve` with a ready options object. On a grooved roller
+    with ``grooves = "auto"`` the domain across the width is chosen by what the web's edges
+    do (:func:`webfem.models.groove_domain.solve_grooved`)."""
+    pattern, _ = groove_domain(case, options)
+    if pattern is None or options.grooves != "auto":
+        return solve_fe(FILM, case, options, initial, raise_on_failure)
+    return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
+        FILM, case, o, initial, raising and raise_on_failure))
 
 
 def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,

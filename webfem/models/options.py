@@ -278,9 +278,20 @@ class FE2DOptions(FE1DOptions):
     symmetry: bool = option(True, "half width with a symmetry condition (false: full width)",
                             "bool")
     grooves: str = option("auto", "grooved roller: the periodic cell land centre to groove "
-                          "centre (a wide web), the full width with its edge lands, or auto "
-                          "(the cell when the web spans >= 10 pitches)", "choice",
-                          choices=("auto", "cell", "full"))
+                          "centre (the web's edges left out), the full width with its edge "
+                          "lands, the edge strip (the edge lands, the interior as its "
+                          "periodic cell), or auto (the cell where the edges' estimated "
+                          "effect is within edge_tol, else the strip, the full width on a "
+                          "web too narrow for one)", "choice",
+                          choices=("auto", "cell", "full", "strip"))
+    edge_tol: float = option(0.01, "grooves = auto: the largest estimated effect of the web's "
+                             "edges (relative, as auto's tol) with which the periodic cell "
+                             "answers", "float", lo=0.0, hi=1.0, lo_open=True)
+    strip_width: float | None = option(None, "grooves = strip: the edge strip's width, scaled "
+                                       "units (none: 24, what grooves that do not vent "
+                                       "need; auto sets it from the periodic cell's "
+                                       "groove pressure)", "float", lo=0.0, lo_open=True,
+                                       hi=1e6, none=True, cli=False)
     groove_pressure: str = option("solved", "grooved roller: the groove pressure solved with "
                                   "the film, or held at ambient (the deep-groove limit, for "
                                   "checks)", "choice", choices=("solved", "ambient"))

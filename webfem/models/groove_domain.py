@@ -1,0 +1,153 @@
+"""The domain across the width of a grooved roller, chosen by what the web's edges do, and
+what a grooved answer says of its web (its sag into the grooves).
+
+With ``grooves = "auto"`` (the default) :func:`solve_grooved` solves
+
+* the **full width** of a web too narrow for an edge strip (:func:`webfem.fem.grooves.
+  strip_width` in from each edge: at least 4 pitches and 8 entry lengths R eps^(1/3), 24
+  where the grooves do not vent);
+* otherwise the **periodic cell** first (cheap) and reads from it how much the grooves vent
+  (their pressure against the lands') and how much of the load the film carries; from these
+  :func:`webfem.fem.grooves.edge_effect` estimates how much the web's edges would change the
+  cell's answer. The cell answers where that is within ``edge_tol`` (auto's ``tol``, 1 %);
+  else the **edge strip**: the outer lands and grooves of each half solved, the periodic
+  interior standing in as the strip's innermost land and groove, weighted (:class:`webfem.
+  fem.film_problem.FilmConfig`), so a web of any width costs what a narrow one does.
+
+The summary's ``groove_domain`` says which, the estimate and its parts, and for the strip the
+change from the cell's answer it measured.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from typing import Callable
+
+import numpy as np
+
+from ..case import Case
+from ..errors import NoAdmissibleSolution
+from ..fem.grooves import EDGE_ZONE, POISSON, SAG_SHARE, GroovePattern, choose_domain, \
+    edge_effect, strip_start, strip_width, web_sag
+from ..result import Result
+from .options import FE2DOptions
+
+__all__ = ["solve_grooved", "sag_warning", "domain_text", "venting"]
+
+
+def venting(case: Case, result: Result) -> float:
+    """1 - the groove pressure over the land pressure over the wrap, of a solved grooved
+    ``result`` (1: the grooves are at ambient, 0: they hold the lands' pressure)."""
+    problem, u = result.state("problem"), result.state("state")
+    X = np.linspace(-0.5 * case.beta, 0.5 * case.beta, 201)
+    return 1.0 - problem.groove_pressure_ratio(u, X)
+
+
+def domain_text(case: Case, domain: str, pattern: GroovePattern, **why) -> str:
+    """The summary's ``groove_domain``: the domain and why (``why``: ``estimate``, ``vent``,
+    ``film``, ``tol``, ``width`` (the strip's, scaled), ``cell`` (the cell's result))."""
+    pitch = case.roller.groove_pitch
+    spans = f"the web spans {case.web.width / pitch:.3g} groove pitches"
+    est = why.get("estimate")
+    said = "" if est is None else (
+        f"the web's edges estimated to change the periodic cell's answer by {est:.3g} "
+        f"(edge zone {_zone_mm(case, pattern, why['vent']):.3g} mm, the grooves venting "
+        f"{100 * why['vent']:.0f} % of the lands' pressure, the film carrying "
+        f"{100 * why['film']:.0f} % of the load; edge_tol = {why['tol']:g})")
+    if domain == "cell":
+        return (f"periodic cell: {spans}; " + (said + ": left out" if said else
+                "the web's edges are left out") +
+                " (grooves = \"strip\" or \"full\" solves them)")
+    if domain == "strip":
+        width = why["width"] * case.x_scale
+        z_c = strip_start(pattern, case.lam, why["width"]) * case.x_scale
+        text = (f"edge strip: {spans}; the outer {1e3 * (0.5 * case.web.width - z_c):.3g} mm "
+                f"of each half solved with its edge lands (at least {1e3 * width:.3g} mm), "
+                "the periodic interior as its innermost land and groove, weighted")
+        cell = why.get("cell")
+        if said:
+            text += "; " + said
+        if cell is not None:
+            text += "; " + _change(cell, why["answer"])
+        return text
+    full = f"full width: {spans}, edge lands included"
+    if why.get("narrow"):
+        return full + " (too narrow for an edge strip)"
+    return full + (f"; {said}" if said else "") + (
+        f"; {_change(why['cell'], why['answer'])}" if why.get("cell") is not None else "")
+
+
+def _zone_mm(case: Case, pattern: GroovePattern, vent: float) -> float:
+    return 1e3 * case.x_scale * (EDGE_ZONE * (1.0 - vent) + pattern.pitch * vent)
+
+
+def _change(cell: Result, answer: Result) -> str:
+    """What the edges changed, measured: the strip's answer against the cell's."""
+    parts = []
+    for key in ("h_center", "h_min"):
+        parts.append(f"{key} {100 * (answer[key] / cell[key] - 1):+.2g} %")
+    scale = max(abs(cell["mu"]), 0.1 * cell.case.friction.mu_cc)
+    parts.append(f"mu {100 * (answer['mu'] - cell['mu']) / scale:+.2g} %")
+    return "against the periodic cell: " + ", ".join(parts)
+
+
+def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
+                  solve: Callable[[FE2DOptions, bool], Result]) -> Result:
+    """``grooves = "auto"``: the domain chosen as the module text says, solved with
+    ``solve(options, raise_on_failure)``. The result's ``groove_domain`` says which and why;
+    its ``solve_time_s`` includes the periodic cell's solve."""
+    t0 = time.perf_counter()
+    if choose_domain("auto", pattern, case.lam) == "full" and \
+            choose_domain("auto", pattern, case.lam, vent=1.0) == "full":
+        r = solve(options.replace(grooves="full"), True)
+        return _said(r, domain_text(case, "full", pattern, narrow=True), t0)
+    try:
+        cell = solve(options.replace(grooves="cell"), False)
+    except NoAdmissibleSolution:
+        cell = None           # the strip or the full width decide
+    why = {"vent": 0.0}
+    if cell is not None and cell.summary.converged:
+        vent = min(max(venting(case, cell), 0.0), 1.0)
+        film = 1.0 - (cell["contact_share"] or 0.0)
+        why = {"vent": vent, "film": film, "tol": options.edge_tol,
+               "estimate": edge_effect(case.lam, pattern.pitch, vent, film)}
+    else:
+        cell = None
+    domain = choose_domain("auto", pattern, case.lam, why["vent"], why.get("estimate"),
+                           options.edge_tol)
+    if domain == "cell":
+        return _said(cell, domain_text(case, "cell", pattern, **why), t0)
+    width = strip_width(pattern.pitch, why["vent"])
+    r = solve(options.replace(grooves=domain, strip_width=width if domain == "strip"
+                              else None), True)
+    return _said(r, domain_text(case, domain, pattern, width=width, cell=cell, answer=r,
+                                **why), t0)
+
+
+def _said(r: Result, text: str, t0: float) -> Result:
+    summary = r.summary.replace(groove_domain=text, solve_time_s=time.perf_counter() - t0)
+    return dataclasses.replace(r, summary=summary)
+
+
+def sag_warning(case: Case, h_min: float) -> str:
+    """The warning of a web that sags into its grooves by more than :data:`~webfem.fem.
+    grooves.SAG_SHARE` of the smallest land gap ``h_min`` [m] ("" otherwise): webfem holds the
+    web flat across the width. The sag is :func:`~webfem.fem.grooves.web_sag` under the wrap
+    pressure T_eff/R, with E = web.modulus_md (the only modulus a case gives). h_min, not the
+    wrap's mean land gap: the smallest gap is where the asperities, and so the traction,
+    are most sensitive to a change of the gap."""
+    w, g = case.web, case.roller.groove_width
+    sag = web_sag(case.p_bar, g, w.modulus_md, w.thickness)
+    if not (h_min > 0.0) or sag <= SAG_SHARE * h_min:
+        return ""
+    D = w.modulus_md * w.thickness ** 3 / (12.0 * (1.0 - POISSON ** 2))
+    return (f"the web sags into its {g * 1e3:.3g} mm grooves by about {sag * 1e6:.2g} um "
+            f"({100 * sag / h_min:.3g} % of the smallest land gap h_min = {h_min * 1e6:.3g} um, "
+            f"> {100 * SAG_SHARE:.0f} %): p g^4/(384 D) under the wrap pressure T/R = "
+            f"{case.p_bar:.4g} Pa, held flat on the lands (free to turn there: "
+            f"{5 * sag * 1e6:.2g} um), D = E t^3/(12(1 - nu^2)) = {D:.3g} N m with "
+            f"E = web.modulus_md = {w.modulus_md:.3g} Pa, t = {w.thickness * 1e6:.3g} um, "
+            f"nu = {POISSON:g}; webfem holds the web flat across the width and does not model "
+            "it bending into its grooves: the film over the land edges is not what it "
+            "computes (narrower grooves or a thicker web keep the sag small)")
