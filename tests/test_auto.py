@@ -5,6 +5,7 @@ import pytest
 
 import webfem
 from webfem import Case
+from webfem.models import auto
 from webfem.models.readout import READ_QUANTITIES, error_scale
 
 from conftest import PET_IDLER
@@ -95,3 +96,20 @@ def test_bad_auto_options():
         webfem.solve(Case(), model="auto", quantity="torque")
     with pytest.raises(webfem.InputError, match="tol"):
         webfem.solve(Case(), model="auto", tol=2.0)
+
+
+def test_auto_moves_on_to_fe2d_when_fe1d_does_not_converge(monkeypatch):
+    """An fe1d that fails (here held to one Newton step without continuation) does not end
+    auto's search: fe2d answers, and ``why`` says what fe1d did."""
+    import types
+
+    from webfem.models import fe1d as real_fe1d
+
+    def failing(case, options, **kw):
+        return real_fe1d.solve_case(case, options.replace(max_iter=1, continuation=False),
+                                    **kw)
+
+    monkeypatch.setattr(auto, "fe1d", types.SimpleNamespace(solve_case=failing))
+    r = auto.solve(Case())
+    assert r["model_used"] == "fe2d" and r["converged"]
+    assert "fe1d: did not converge" in r["why"]

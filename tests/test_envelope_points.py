@@ -126,6 +126,9 @@ SLOW = [
     pytest.param(point("board", 0.09322702927739941, 39.888123256518746, 42.24623437101128,
                        0.01990908307497629, 24.494259403758267, 0.0, 0.0007008183524727319,
                        0.0002852014280292631, 0.00015068353529605068),
+                 # answers (mu 0.41, the web resting 1.7 um deep) since the depth
+                 # continuation's first step may shrink, but in 92-120 s on the loaded machine
+                 marks=pytest.mark.xfail(strict=True, reason=TIMEOUT),
                  id="143-board-held-grooved-narrow"),
     pytest.param(point("newsprint", 0.06114512740899566, 181.56246933001026, 14.475138014112687,
                        0.3401409238960507, 9.736536174424273, 9.736536174424273,

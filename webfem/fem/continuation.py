@@ -28,11 +28,16 @@ __all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "FIRST_TRY",
 #: Newton steps a direct attempt (or the jump to s = 1) gets before the stepped path.
 FIRST_TRY = 25
 
+#: The smallest first factor :func:`geometric` tries from below (a path from f = 0).
+FIRST_MIN = 1e-4
+
 
 def geometric(problem_at, u, prm, tol, max_iter, failed: SolveInfo, f: float, what: str):
     """Newton along a factor f stepped geometrically (by 4) to 1 from ``f``: each step starts
     from the last converged state on ``problem_at(f)``; a failed step is halved (in log f),
-    and the path fails when the step falls below 1 %. ``failed``: the attempt that led
+    and the path fails when the step falls below 1 %. A path from below (``f`` < 1, the
+    start being the problem at f = 0) whose first step fails tries f / 4, down to
+    :data:`FIRST_MIN`. ``failed``: the attempt that led
     here (its iterations are counted).
 
     Each step starts from the last state, not from a secant predictor through the last two:
@@ -51,6 +56,11 @@ def geometric(problem_at, u, prm, tol, max_iter, failed: SolveInfo, f: float, wh
                 return u, done.noted(f"after continuation in {what}")
             f = max(1.0, f / 4.0) if f > 1.0 else min(1.0, 4.0 * f)
         else:
+            if last is None and f < 1.0 and f / 4.0 >= FIRST_MIN:
+                # the first step from the problem at f = 0 (e.g. the smooth film) failed: a
+                # smaller one (a stiff board's 1/64 of the groove depth failed, 1/256 went)
+                f /= 4.0
+                continue
             if last is None or abs(np.log(f / last)) < np.log(1.01):
                 done.reason = f"{what} continuation failed at {f:.3g} x the {what}: " \
                               + info.reason
