@@ -245,7 +245,7 @@ def test_finer_mesh_remedy_stops_before_a_huge_mesh(monkeypatch, n_dofs, levels)
     class Problem:
         pass
 
-    def solve_and_refine(disc, start, prm, options):
+    def solve_and_refine(disc, start, prm, options, case, cold=False):
         tried.append(options.level)
         p = Problem()
         p.n_dofs = n_dofs

@@ -240,6 +240,10 @@ class FE1DOptions(Options):
                                 "reaction length", "float", lo=0.0, lo_open=True, hi=100.0)
     min_cell: float = option(2e-3, "smallest cell the refinement makes, scaled units",
                              "float", lo=0.0, lo_open=True, hi=10.0)
+    adapt_settle: bool = option(True, "stop the rounds of refinement where the film is thin "
+                                "once one changes no quantity read (h_center, h_min, mu, "
+                                "contact share) by more than error_tol/10 (false: every "
+                                "round the length rule asks for)", "bool")
     continuation: bool = option(True, "Newton: continuation from the Eshel-Elrod problem on "
                                 "failure", "bool")
     backtrack: float = option(1.5, "Picard: undo a step that raises the residual by more "
@@ -300,7 +304,7 @@ class FE2DOptions(FE1DOptions):
     def line_options(cls, options: "FE2DOptions") -> FE1DOptions:
         """The 1-D options of the infinitely wide start (same mesh and physics)."""
         keep = ("entry", "level", "compressible", "contact", "floor", "adapt", "adapt_ratio",
-                "min_cell", "mesh", "nodes")
+                "min_cell", "adapt_settle", "error_tol", "mesh", "nodes")
         # the 1-D solution only starts the 2-D solve: its own mesh error is not stated
         return FE1DOptions(estimate=False, **{k: getattr(options, k) for k in keep})
 

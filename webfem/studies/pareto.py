@@ -66,7 +66,7 @@ def methods(quick: bool = False) -> list[tuple[str, str, dict]]:
     """``(name, model, options)`` of every method timed. The rows named by a mesh level
     solve on that level's mesh alone (no error estimate, which would refine further); the
     "default" rows are what a user gets: the default mesh with its error estimate."""
-    fixed = {"estimate": False}
+    fixed = {"estimate": False, "adapt_settle": False}
     lv1 = (0, 1) if quick else (0, 1, 2)
     out = [("closed form", "closed-form", {})]
     out += [(f"fe1d P2 level {lv}", "fe1d", {"level": lv, **fixed}) for lv in lv1]

@@ -88,7 +88,7 @@ def attempt(case: Case, model: str, opts: dict) -> dict:
         warnings.simplefilter("ignore", RuntimeWarning)    # diverging iterates overflow
         try:
             # the schemes on the given mesh: no error estimate (its solves would be Newton's)
-            r = solve(case, model=model, **{"estimate": False, **opts})
+            r = solve(case, model=model, **{"estimate": False, "adapt_settle": False, **opts})
         except ConvergenceError as err:
             r = err.result
         except (FloatingPointError, ValueError, RuntimeError, np.linalg.LinAlgError) as err:
