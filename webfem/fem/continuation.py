@@ -190,10 +190,10 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
     gap ``prm.H_c`` (:meth:`initial_guess` with ``H0 = H_c``, the pressure zero). Then the
     full problem is tried at a = 1 at once and, if that fails (after at most
     :data:`FIRST_TRY` steps), in steps of 0.25, doubled after each success and quartered
-    after each failure, down to 1e-4. Why: a stiff web (board, Dn in the hundreds or more)
-    that must rest has no flying solution; :func:`eshel_elrod`'s path in Dn follows the
-    flying branch to its fold (Dn ~ 950 for 1 mm board on the base roller) and stalls there,
-    and Newton from a resting guess with the film at full strength fails its line search.
+    after each failure, down to 1e-4. Why: for a stiff web (board, Dn in the hundreds or
+    more) the flying film's branch ends at a fold in Dn (Dn ~ 950 for 1 mm board on the base
+    roller, on mesh levels 0 and 2 alike), where :func:`eshel_elrod`'s path stalls, and Newton
+    from a resting guess with the film at full strength fails its line search.
     Needs asperity contact (``prm.contact``): without it nothing holds the web at a = 0.
     Returns ``(u, SolveInfo)`` with the strengths passed in ``steps``."""
     done = before if before is not None else SolveInfo(steps=[])
@@ -227,9 +227,7 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
                 return u, done.noted("after continuation in the film's strength from the "
                                      "web resting on its asperities")
             da = min(2.0 * da, 1.0)
-        elif jump:
-            jump = False
-        else:
+        elif not jump:      # a failed jump goes on with the first step, da = 0.25
             da *= 0.25
             if da < 1e-4:
                 done.steps = steps
