@@ -30,7 +30,7 @@ from ..result import Rebuild, Result, State
 from . import fe1d
 from .driver import Discretisation, Start, solve_fe
 from .fields import film_fields
-from .options import FE2DOptions
+from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
 from .groove_domain import domain_text, sag_warning, solve_grooved
 
@@ -89,17 +89,41 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                          ambient_grooves=options.groove_pressure == "ambient")
 
 
+#: How many cold 1-D starts :class:`_Film` keeps (a case's direct start and its finer-mesh
+#: remedy's).
+LINES_KEPT = 2
+
+
 class _Film(Discretisation):
     """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
     the start and the X mesh, already refined where the film is thin."""
 
     name = NAME
 
+    def __init__(self):
+        #: the 1-D starts of the last cold solves, by case and 1-D options (bounded)
+        self._lines: dict = {}
+
+    def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
+        """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
+        and options: the driver's safe start and its check of a resting answer start from
+        the same 1-D solve as the direct start (a stiff board's took 5-10 s, each time), and
+        it is deterministic, so the kept one is the one a new solve would give."""
+        if line is not None:
+            return fe1d.solve_case(smooth, options, initial=line, raise_on_failure=False)
+        key = (smooth, options)
+        one = self._lines.get(key)
+        if one is None:
+            one = fe1d.solve_case(smooth, options, raise_on_failure=False)
+            if len(self._lines) >= LINES_KEPT:
+                self._lines.pop(next(iter(self._lines)))
+            self._lines[key] = one
+        return one
+
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
         smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
         line = restart.line if restart is not None and restart.model == NAME else None
-        one = fe1d.solve_case(smooth, FE2DOptions.line_options(options), initial=line,
-                              raise_on_failure=False)
+        one = self._line(smooth, FE2DOptions.line_options(options), line)
         p1, u1 = one.state("problem"), one.state("state")
         problem = problem_for(case, options, p1.X)
         problem.line_start = (p1, u1)
