@@ -117,7 +117,7 @@ def test_needs_contact():
 @pytest.mark.xfail(strict=True, raises=ConvergenceError, reason=(
     "past the flying branch's fold (Dn 950 of 1700) the resting web is pressed 26-31 sigma "
     "into its asperities; the film in that seal is not resolved and falls below vacuum on "
-    "the refined meshes (film rupture is not in the model); fe2d fails after fe1d (48 s)"))
+    "the refined meshes (film rupture is not in the model); fe2d fails after fe1d (about 50 s)"))
 def test_one_mm_web_on_the_base_roller_answers():
     """``base --set "web.thickness=1 mm"`` with auto (issue 22): an admissible answer."""
     case = base(**{"web.thickness": 1e-3})
