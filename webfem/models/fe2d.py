@@ -101,7 +101,7 @@ class _Film(Discretisation):
     name = NAME
 
     def __init__(self):
-        #: the 1-D starts of the last cold solves, by case and 1-D options (bounded)
+        #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
         self._lines: dict = {}
 
     def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
@@ -116,9 +116,15 @@ class _Film(Discretisation):
         if one is None:
             one = fe1d.solve_case(smooth, options, raise_on_failure=False)
             if len(self._lines) >= LINES_KEPT:
-                self._lines.pop(next(iter(self._lines)))
+                self._lines.clear()
             self._lines[key] = one
         return one
+
+    def forget_lines(self) -> None:
+        """Drop the kept 1-D starts (:meth:`_line`): a solve starts and ends without them,
+        so what one solve reports (its stages, the 1-D start's work) never depends on an
+        earlier one."""
+        self._lines.clear()
 
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
         smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
@@ -224,10 +230,14 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     with ``grooves = "auto"`` the domain across the width is chosen by what the web's edges
     do (:func:`webfem.models.groove_domain.solve_grooved`)."""
     pattern, _ = groove_domain(case, options)
-    if pattern is None or options.grooves != "auto":
-        return solve_fe(FILM, case, options, initial, raise_on_failure)
-    return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
-        FILM, case, o, initial, raising and raise_on_failure))
+    FILM.forget_lines()      # the 1-D starts are kept within one solve only
+    try:
+        if pattern is None or options.grooves != "auto":
+            return solve_fe(FILM, case, options, initial, raise_on_failure)
+        return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
+            FILM, case, o, initial, raising and raise_on_failure))
+    finally:
+        FILM.forget_lines()
 
 
 def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,
