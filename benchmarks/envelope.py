@@ -2,7 +2,8 @@
 
 Run: ``python benchmarks/envelope.py [--points 200] [--workers 2] [--out out/envelope]``
 (about 7 minutes for 200 points on 2 cores; not part of the test suite). The sample and
-its generator: ``envelope_sample.py``. Each point is solved with ``webfem.solve(case)``
+its generator: ``envelope_sample.py``. ``--material board`` (or ``--index 57 86``) solves and
+reports only those of the first ``--points``. Each point is solved with ``webfem.solve(case)``
 (auto, the default options) in its own forked process (one BLAS thread), killed after
 ``--timeout`` s (60) or above ``--memory`` GB; its time is the solve's wall time, its memory
 the process's peak resident set (``wait4``'s ru_maxrss, the interpreter and webfem
@@ -34,7 +35,7 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 from common import target  # noqa: E402
-from envelope_sample import IMPOSSIBLE, PARAMS, case_of, category, draw  # noqa: E402
+from envelope_sample import IMPOSSIBLE, MATERIALS, PARAMS, case_of, category, draw  # noqa: E402
 
 RESULTS = ("status", "category", "seconds", "peak_mb", "model_used", "h_min", "mu",
            "n_dofs", "message")
@@ -262,6 +263,10 @@ def main(argv=None) -> None:
     ap.add_argument("--memory", type=float, default=6.0,
                     help="GB resident at which a point is killed as a crash (6)")
     ap.add_argument("--replace", action="store_true", help="start the CSV over")
+    ap.add_argument("--material", choices=sorted(MATERIALS),
+                    help="only the points of this material (among the first --points)")
+    ap.add_argument("--index", type=int, nargs="+",
+                    help="only these points (their numbers in the sample)")
     args = ap.parse_args(argv)
     import webfem  # noqa: F401 - imported once, before the children fork
     import webfem.models.fe2d  # noqa: F401
@@ -270,6 +275,10 @@ def main(argv=None) -> None:
     if args.replace and csv_path.exists():
         csv_path.unlink()
     points = [draw(i) for i in range(args.points)]
+    if args.material:
+        points = [p for p in points if p["material"] == args.material]
+    if args.index:
+        points = [p for p in points if p["index"] in set(args.index)]
     done = load(csv_path, points)
     seen = {int(r["index"]) for r in done}
     todo = [p for p in points if p["index"] not in seen]

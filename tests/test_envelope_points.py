@@ -70,6 +70,11 @@ FAST = [
     pytest.param(point("board", 0.11127428835501674, 38.74472178236612, 10.957953244889985,
                        1.9203743075671362, 1.3969513958209825, 1.3969513958209825),
                  id="117-board-idler-stiff"),
+    # past the flying branch's fold (Dn 640): the Eshel-Elrod path ends with the absolute film
+    # pressure below 0, the film strength's path rests the web (over 60 s before it)
+    pytest.param(point("board", 0.049130085295654304, 136.21272609428226, 21.582978900383086,
+                       1.232876233589238, 2.89440563032965, 2.0471734411643236),
+                 id="86-board-driven-past-the-fold"),
     pytest.param(point("board", 0.06022614488371616, 246.37427321720466, 13.30501278689511,
                        0.012320407854979261, 12.61228954262293, 15.4485795560439),
                  id="60-board-driven-narrow"),

@@ -7,7 +7,10 @@
   starts from) down to the true width;
 * :func:`groove_depth`: the 2-D film on a grooved roller from the smooth roller (depth 0, on
   the same mesh; itself by :func:`web_width` where it must) through grooves a quarter of the
-  film deep to the true depth.
+  film deep to the true depth;
+* :func:`film_strength`: the 1-D model from the web resting on its asperities alone (the
+  Couette flux switched off, so no film pressure) to the full film: the resting branch of
+  stiff webs, which :func:`eshel_elrod`'s flying branch does not reach past its fold.
 
 Each returns ``(u, SolveInfo)``; the info counts every Newton step of the path and says
 where it stopped when it fails. The problems are duck-typed (:class:`webfem.fem.film_problem.
@@ -22,8 +25,8 @@ from ..progress import stage
 from .grooves import GroovePattern
 from .outcome import SolveInfo
 
-__all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "FIRST_TRY",
-           "FIRST_DEPTH", "STEP_ITER"]
+__all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "film_strength",
+           "FIRST_TRY", "FIRST_DEPTH", "STEP_ITER"]
 
 #: Newton steps a direct attempt (or the jump to s = 1) gets before the stepped path.
 FIRST_TRY = 25
@@ -176,3 +179,58 @@ def eshel_elrod(problem, prm, tol, max_iter, before: SolveInfo | None = None):
                 done.reason = f"continuation stalled at s = {s_prev:.4g}"
                 return u, done
             s = min(1.0, s_prev + ds)
+
+
+def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
+    """Newton along the film's strength a (the factor of the Couette flux,
+    ``prm.film_strength(a)``) from 0 to 1, starting from the web resting on its asperities.
+
+    At a = 0 the film carries nothing (P = 0 solves it), so the web rests on contact and
+    bending alone: the web's rows are solved by Newton from the web wrapped at the contact
+    gap ``prm.H_c`` (:meth:`initial_guess` with ``H0 = H_c``, the pressure zero). Then the
+    full problem is tried at a = 1 at once and, if that fails (after at most
+    :data:`FIRST_TRY` steps), in steps of 0.25, doubled after each success and quartered
+    after each failure, down to 1e-4. Why: for a stiff web (board, Dn in the hundreds or
+    more) the flying film's branch ends at a fold in Dn (Dn ~ 950 for 1 mm board on the base
+    roller, on mesh levels 0 and 2 alike), where :func:`eshel_elrod`'s path stalls, and Newton
+    from a resting guess with the film at full strength fails its line search.
+    Needs asperity contact (``prm.contact``): without it nothing holds the web at a = 0.
+    Returns ``(u, SolveInfo)`` with the strengths passed in ``steps``."""
+    done = before if before is not None else SolveInfo(steps=[])
+    if not prm.contact:
+        done = SolveInfo(**{**done.__dict__, "converged": False,
+                            "reason": "film strength continuation: needs asperity contact"})
+        return problem.initial_guess(prm), done
+    off = prm.film_strength(0.0)
+    u = problem.initial_guess(prm, H0=prm.H_c)
+    u[problem.iP] = 0.0
+    with stage("film strength continuation, the web on its asperities"):
+        out = problem.newton(u, off, tol, max_iter, rows=problem.free_W)
+    done = SolveInfo.of(out, [0.0]).after(done)
+    if not out.converged:
+        done.reason = "film strength continuation: the web on its asperities alone did " \
+                      "not converge: " + out.reason
+        return out.u, done
+    u, steps = out.u, [0.0]
+    a_prev, da, jump = 0.0, 0.25, True
+    while True:
+        a = 1.0 if jump else min(1.0, a_prev + da)
+        with stage(f"film strength continuation, a = {a:.3g}"):
+            out = problem.newton(u, prm.film_strength(a), tol,
+                                 min(max_iter, FIRST_TRY) if jump else max_iter)
+        done = SolveInfo.of(out, steps).after(done)
+        if out.converged:
+            u, a_prev = out.u, a
+            steps.append(a)
+            if a >= 1.0:
+                done.steps = steps
+                return u, done.noted("after continuation in the film's strength from the "
+                                     "web resting on its asperities")
+            da = min(2.0 * da, 1.0)
+        elif not jump:      # a failed jump goes on with the first step, da = 0.25
+            da *= 0.25
+            if da < 1e-4:
+                done.steps = steps
+                done.reason = f"film strength continuation stalled at a = {a_prev:.4g}"
+                return u, done
+        jump = False

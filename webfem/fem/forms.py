@@ -125,6 +125,9 @@ def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     Jacobian: rho = 1 + d P and H^3 frozen at the state."""
     d, K, s = prm["d"], prm["K"], prm.get("slip", 0.0)
     ds = prm.get("ds", d)
+    # the Couette (entrainment) flux scaled by a (1: the physics; below 1 only on the way to
+    # a resting web, :func:`webfem.fem.continuation.film_strength`: a = 0 has P = 0)
+    a = prm.get("couette", 1.0)
     Hf, above = flow_gap(H, prm)
     rho, rho_s = 1.0 + d * P, 1.0 + ds * P
     Hf2 = Hf**2
@@ -133,16 +136,16 @@ def film_coefficients(H, P, PX, PZ, prm, newton: bool = True) -> dict:
     dD = 3.0 * rho * Hf2 + 2.0 * s * Hf       # its derivative in H
     nt = 1.0 if newton else 0.0
     return {
-        "flux_x": diffusion * PX - rho * Hf,  # Poiseuille minus Couette along X
+        "flux_x": diffusion * PX - a * rho * Hf,  # Poiseuille minus Couette along X
         "flux_z": diffusion * PZ,
         "sink": K * rho_s * P,
         # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 ds P) dp
         "jD": diffusion,
-        "jX": nt * (d * Hf3 * PX - d * Hf),
+        "jX": nt * (d * Hf3 * PX - a * d * Hf),
         "jZ": nt * d * Hf3 * PZ,
         "jS": K * (rho_s + nt * ds * P),
         # dF/dH, which is dF/dW: (dD/dH grad P) . grad q - rho q_X
-        "hX": above * (nt * dD * PX - rho),
+        "hX": above * (nt * dD * PX - a * rho),
         "hZ": above * nt * dD * PZ,
     }
 

@@ -36,7 +36,9 @@ class FoilParameters:
     H_c: the scaled gap at which contact alone carries T/R; land: the land fraction a/p_g of
     a grooved roller (1 smooth): asperity contact acts on the lands only, so the web sees
     land Pc(H) (:func:`webfem.fem.forms.web_coefficients`); flow 1: the air flows through the
-    flow gap E[(H - z)+] instead of H with the floor (:func:`webfem.fem.forms.flow_gap`).
+    flow gap E[(H - z)+] instead of H with the floor (:func:`webfem.fem.forms.flow_gap`);
+    couette: the factor of the Couette (entrainment) flux, 1 but on the film-strength path to
+    a resting web (:meth:`film_strength`).
     """
 
     beta: float
@@ -53,6 +55,7 @@ class FoilParameters:
     slip: float = 0.0
     land: float = 1.0
     flow: int = 0
+    couette: float = 1.0
 
     def __post_init__(self):
         if self.ds is None:     # the paper's sink unless told otherwise
@@ -89,9 +92,14 @@ class FoilParameters:
         """The keyword arguments the forms' coefficient functions take."""
         return dict(beta=self.beta, K=self.K, d=self.d, ds=self.ds, slip=self.slip, Dn=self.Dn,
                     c=self.c, S=self.S, contact=self.contact, floor=self.floor, law=self.law,
-                    land=self.land, flow=self.flow)
+                    land=self.land, flow=self.flow, couette=self.couette)
 
     def homotopy(self, s: float) -> "FoilParameters":
         """Permeation, compressibility and bending scaled by ``s``: s = 0 is the Eshel-Elrod
         problem, which Newton solves from a cold start (continuation)."""
         return replace(self, K=s * self.K, d=s * self.d, ds=s * self.ds, Dn=s * self.Dn)
+
+    def film_strength(self, a: float) -> "FoilParameters":
+        """The Couette (entrainment) flux scaled by ``a``: a = 0 has no film pressure (P = 0
+        solves the film), so the web rests on its asperities alone; a = 1 is the problem."""
+        return replace(self, couette=float(a))

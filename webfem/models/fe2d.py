@@ -30,7 +30,7 @@ from ..result import Rebuild, Result, State
 from . import fe1d
 from .driver import Discretisation, Start, solve_fe
 from .fields import film_fields
-from .options import FE2DOptions
+from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
 from .groove_domain import domain_text, sag_warning, solve_grooved
 
@@ -89,17 +89,47 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                          ambient_grooves=options.groove_pressure == "ambient")
 
 
+#: How many cold 1-D starts :class:`_Film` keeps (a case's direct start and its finer-mesh
+#: remedy's).
+LINES_KEPT = 2
+
+
 class _Film(Discretisation):
     """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
     the start and the X mesh, already refined where the film is thin."""
 
     name = NAME
 
+    def __init__(self):
+        #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
+        self._lines: dict = {}
+
+    def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
+        """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
+        and options: the driver's safe start and its check of a resting answer start from
+        the same 1-D solve as the direct start (a stiff board's took 5-10 s, each time), and
+        it is deterministic, so the kept one is the one a new solve would give."""
+        if line is not None:
+            return fe1d.solve_case(smooth, options, initial=line, raise_on_failure=False)
+        key = (smooth, options)
+        one = self._lines.get(key)
+        if one is None:
+            one = fe1d.solve_case(smooth, options, raise_on_failure=False)
+            if len(self._lines) >= LINES_KEPT:
+                self._lines.clear()
+            self._lines[key] = one
+        return one
+
+    def forget_lines(self) -> None:
+        """Drop the kept 1-D starts (:meth:`_line`): a solve starts and ends without them,
+        so what one solve reports (its stages, the 1-D start's work) never depends on an
+        earlier one."""
+        self._lines.clear()
+
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
         smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
         line = restart.line if restart is not None and restart.model == NAME else None
-        one = fe1d.solve_case(smooth, FE2DOptions.line_options(options), initial=line,
-                              raise_on_failure=False)
+        one = self._line(smooth, FE2DOptions.line_options(options), line)
         p1, u1 = one.state("problem"), one.state("state")
         problem = problem_for(case, options, p1.X)
         problem.line_start = (p1, u1)
@@ -200,10 +230,14 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     with ``grooves = "auto"`` the domain across the width is chosen by what the web's edges
     do (:func:`webfem.models.groove_domain.solve_grooved`)."""
     pattern, _ = groove_domain(case, options)
-    if pattern is None or options.grooves != "auto":
-        return solve_fe(FILM, case, options, initial, raise_on_failure)
-    return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
-        FILM, case, o, initial, raising and raise_on_failure))
+    FILM.forget_lines()      # the 1-D starts are kept within one solve only
+    try:
+        if pattern is None or options.grooves != "auto":
+            return solve_fe(FILM, case, options, initial, raise_on_failure)
+        return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
+            FILM, case, o, initial, raising and raise_on_failure))
+    finally:
+        FILM.forget_lines()
 
 
 def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,
