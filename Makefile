@@ -36,13 +36,16 @@ test-slow: $(STAMP)
 	$(PY) -m pytest -q -m slow
 
 # time, iterations, unknowns, error against the converged mesh and the Newton floor of each
-# model, with issue 14's targets beside them (met / not met); about 4 minutes on 2 cores
+# model, with issue 14's targets beside them (met / not met); issue 23's six speed figures on
+# real cases (bench_speed.py, about 4 more minutes: its 32-design groove map alone takes 2-3);
+# about 8 minutes on 2 cores
 # (bench_figures.py alone runs `make figures` into a temporary folder: about 2.5)
 bench: $(STAMP)
 	$(PY) benchmarks/bench_closed_form.py
 	$(PY) benchmarks/bench_fe1d.py
 	$(PY) benchmarks/bench_fe2d.py
 	$(PY) benchmarks/bench_sweeps.py
+	$(PY) benchmarks/bench_speed.py
 	$(PY) benchmarks/bench_calibration.py
 	$(PY) benchmarks/bench_figures.py
 

@@ -10,6 +10,8 @@ import numpy as np
 import pytest
 
 import webfem
+from webfem.models.continued import MESH_SLACK
+from webfem.models.readout import error_scale
 from webfem.fem.outcome import SolveInfo
 from webfem.api import solve_along
 from webfem.errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
@@ -131,7 +133,19 @@ def test_a_cold_solve_ends_where_a_continued_one_does(model, speed):
     cold = webfem.solve(case, model=model)
     near = webfem.solve(BASE.updated({"roller.speed": speed - 0.5}), model=model)
     continued = webfem.solve(case, model=model, initial=near)
-    assert cold["n_dofs"] == continued["n_dofs"] and not cold["resting"]
+    assert not cold["resting"]
+    if model == "fe2d":
+        # a continued 2-D point keeps the previous point's mesh, moved, while it has about
+        # as many nodes as its gap asks for (issue 23: webfem.models.continued): the two
+        # answers come from two meshes and agree within their stated mesh errors; the
+        # spurious branch ended on a mesh 1.57 times as large
+        assert cold["n_dofs"] <= continued["n_dofs"] * MESH_SLACK ** 2
+        for key in ("h_center", "h_min", "mu", "contact_share"):
+            bound = sum(r[f"error_{key}"] * error_scale(case, key, r[key])
+                        for r in (cold, continued))
+            assert abs(cold[key] - continued[key]) <= bound, key
+        return
+    assert cold["n_dofs"] == continued["n_dofs"]
     for key in ("h_center", "h_min", "h_outlet", "mu"):
         assert cold[key] == pytest.approx(continued[key], rel=1e-8), key
 

@@ -47,8 +47,9 @@ def solve(case: Case | str | os.PathLike, model: str = "auto", *,
         microseconds), ``"fe1d"`` (infinitely wide film + web, tens of milliseconds) or
         ``"fe2d"`` (2-D film with edge leakage + web, about 0.3 s).
     initial : Result, optional
-        A converged result of the same model at a nearby point to start from (continuation);
-        the answer does not depend on it, only the cost.
+        A converged result of the same model at a nearby point to start from (continuation).
+        The cost depends on it; the answer only within its stated mesh error (fe2d may keep
+        the previous point's mesh, moved: :mod:`webfem.models.continued`).
     options : Options or dict, optional
         The model's options (:class:`~webfem.models.options.FE1DOptions`, ...); keywords
         (``level=2, method="picard"``) are the same. Unknown names are errors.

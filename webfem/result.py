@@ -139,7 +139,12 @@ class State:
     """What a later solve restarts from, small and picklable: the ``case`` solved, the
     ``model``, its mesh (scaled nodes ``X``, and ``Z`` across the width for the 2-D film)
     and DOF vector ``u``, and for the 2-D film the 1-D state it started from (``line``). The
-    same state restarts a solve in the process that made it and in a worker."""
+    same state restarts a solve in the process that made it and in a worker.
+
+    For the 2-D film also ``key``: the options it was solved with (a restart with others
+    starts from its 1-D state only), and ``prior``: the case and DOF vector of the point
+    before it on a path when that point was solved on the same mesh (one level deep: a
+    secant predictor's second point, :mod:`webfem.models.continued`)."""
 
     case: Case
     model: str
@@ -147,6 +152,8 @@ class State:
     u: np.ndarray
     Z: np.ndarray | None = None
     line: "State | None" = None
+    key: dict | None = None
+    prior: tuple | None = None
 
     def __repr__(self) -> str:
         z = f" x {len(self.Z)} Z" if self.Z is not None else ""

@@ -105,8 +105,8 @@ class Discretisation:
         it anyway)."""
         return problem
 
-    def state(self, case: Case, problem, u, start: Start) -> State:
-        """What a later solve restarts from."""
+    def state(self, case: Case, problem, u, start: Start, options=None) -> State:
+        """What a later solve restarts from (``options``: those it was solved with)."""
         return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())
 
 

@@ -22,12 +22,13 @@ import numpy as np
 from ..case import Case
 from ..fem import continuation, forms
 from ..fem.film_problem import FoilBearing2D
+from ..fem.mesh import graded_nodes
 from ..fem.grooves import STRIP_PITCHES, STRIP_SCALED, STRIP_UNVENTED, GroovePattern, \
     choose_domain, edge_effect, graded_groove_nodes, groove_nodes, strip_start, strip_width
 from ..fem.outcome import SolveInfo
 from ..fem.transfer import width_nodes
 from ..result import Rebuild, Result, State
-from . import fe1d
+from . import continued, fe1d
 from .driver import Discretisation, Start, solve_fe
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
@@ -68,8 +69,7 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
     grooves and the domain from the case and the options."""
     pattern, domain = groove_domain(case, options)
     if pattern is None:
-        Z = width_nodes(case.lam, options.level, half=options.symmetry,
-                        fine=options.width_fine)
+        Z = problem_for_width(case, options)
     elif domain == "cell":
         Z = groove_nodes(pattern, 0.0, 0.5 * pattern.pitch, options.width_fine, options.level)
     elif domain == "strip":
@@ -87,6 +87,11 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
     return FoilBearing2D(X, Z, order=options.order, grooves=pattern,
                          web_edges=domain != "cell",
                          ambient_grooves=options.groove_pressure == "ambient")
+
+
+def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
+    """The nodes across a smooth roller's film (scaled): graded towards the web's edge."""
+    return width_nodes(case.lam, options.level, half=options.symmetry, fine=options.width_fine)
 
 
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start and its finer-mesh
@@ -127,6 +132,11 @@ class _Film(Discretisation):
         self._lines.clear()
 
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
+        moved = continued.continued_state(case, options, restart)
+        if moved is not None:
+            start = self._continued(case, prm, options, moved, restart)
+            if start is not None:
+                return start
         smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
         line = restart.line if restart is not None and restart.model == NAME else None
         one = self._line(smooth, FE2DOptions.line_options(options), line)
@@ -139,6 +149,42 @@ class _Film(Discretisation):
         spent = SolveInfo(converged=True, iterations=one["iterations"])
         return Start(problem, problem.start_from_line(p1, u1, prm), info=spent,
                      line=one.restart, kept={"line_result": one})
+
+    def _continued(self, case: Case, prm, options: FE2DOptions, moved, restart: State):
+        """The start from the previous point (:func:`continued.continued_state`), without a
+        1-D solve: on the previous point's mesh moved to this case while it has about as
+        many nodes as the mesh this case's predicted gap asks for (:func:`continued.
+        planned_nodes`, within :data:`continued.MESH_SLACK`: along a sweep the meshes
+        drift, and the previous point's may be twice as fine where its estimate bisected
+        it), else on that planned mesh with the moved state carried over. None (a cold
+        start) when the moved state does not fit its mesh or is not finite."""
+        X, Z = moved
+        graded = graded_nodes(prm.beta, options.entry, level=options.level)
+        # the moved ends are the graded mesh's to rounding: made equal, so that either
+        # mesh's nodes lie inside the other's
+        if not np.allclose(X[[0, -1]], graded[[0, -1]], rtol=1e-9, atol=1e-9):
+            return None
+        X[[0, -1]] = graded[[0, -1]]
+        on_moved = FoilBearing2D(X, Z, order=options.order)
+        if on_moved.n_dofs != restart.u.size:
+            return None
+        u0, note = continued.predicted(on_moved, case, restart)
+        if not np.all(np.isfinite(u0)):
+            return None
+        planned = continued.planned_nodes(graded, prm, options,
+                                          lambda x: on_moved.gap(u0, prm, x))
+        Zc = problem_for_width(case, options)
+        kept = {"continued": note}
+        if continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size):
+            problem = on_moved
+            kept["continued_from"] = (restart.case, restart.u)
+        else:
+            problem = FoilBearing2D(planned, Zc, order=options.order)
+            u0 = on_moved.transfer(u0, prm, problem)
+            kept["continued"] = note + ", carried over to the mesh its gap asks for"
+        # a solved state carried over: Newton's coupled steps straight away
+        problem.direct = True
+        return Start(problem, u0, info=continued.start_info(), line=restart.line, kept=kept)
 
     def safe_start(self, case: Case, prm, options: FE2DOptions) -> Start | None:
         """The starting mesh solved along the continuation that follows the flying film's
@@ -215,9 +261,16 @@ class _Film(Discretisation):
         build, args, kwargs = problem.recipe()
         return Rebuild(build, *args, **kwargs)
 
-    def state(self, case: Case, problem, u, start: Start) -> State:
+    def state(self, case: Case, problem, u, start: Start, options=None) -> State:
+        # the secant's second point: the state this one continued from, while this answer
+        # stayed on the same mesh (refinement changes the DOFs' meaning)
+        before = start.kept.get("continued_from")
+        same = (before is not None and problem.X.size == start.problem.X.size
+                and problem.Z.size == start.problem.Z.size)
         return State(case, NAME, problem.X.copy(), np.asarray(u).copy(), problem.Z.copy(),
-                     line=start.line)
+                     line=start.line,
+                     key=continued.mesh_key(options) if options is not None else None,
+                     prior=before if same else None)
 
 
 #: The 2-D model as the driver sees it.
@@ -247,8 +300,11 @@ def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | N
     ``options`` (or keywords, see :class:`~webfem.models.options.FE2DOptions`): those of
     the 1-D model plus ``width_fine`` (cell size at the web edges, scaled units; ``level``
     bisects) and ``symmetry`` (True: half width with dP/dZ = 0 at the centreline; False:
-    full width). ``initial``: a previous fe2d result; its 1-D state starts this point's 1-D
-    solve (continuation in a sweep). The 2-D solve always starts from the 1-D solution.
+    full width). ``initial``: a previous fe2d result at a nearby point (continuation in a
+    sweep): on a smooth roller with the same options this point starts from its solved
+    state on its mesh, moved to this case, with a secant predictor along the path
+    (:mod:`webfem.models.continued`; no 1-D solve), and falls back to the cold start when
+    that fails; otherwise its 1-D state starts this point's 1-D solve.
     """
     options = options.replace(**values) if options is not None else \
         FE2DOptions.from_mapping(values)

@@ -1,0 +1,93 @@
+"""Speed on real cases (issue 23's six figures, each beside its target, met or not).
+
+Run: ``make bench`` or ``python benchmarks/bench_speed.py [--no-map]`` from the repository
+root (about 4 minutes with the groove map, which alone took 2.7 minutes before issue 23;
+``--no-map`` leaves it out and says so). Figures, on the base case with its default physics:
+
+1. a cold ``webfem.solve(cases/base.toml, model="fe2d")`` (median of 3; the 1-D model's
+   problem cache cleared before each, imports and first-use set-up excluded by a warm-up);
+2. the 24-point log-spaced speed sweep 0.5-40 m/s through :func:`webfem.solve_along`
+   (one run; its points are also checked against cold solves elsewhere: tests/
+   test_continued.py);
+3. the median Newton iterations of that sweep's continued points (points 2-24), as each
+   result reports them: the solve's steps plus those of its mesh error estimate (a solve on
+   the mesh with cells twice as long);
+4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
+   imports included);
+5. one grooved design, a cold ``webfem.solve(cases/base_grooved.toml, model="fe2d")``
+   (median of 3, after a warm-up);
+6. the 32-design groove map ``webfem grooves base --mu-min 0.2`` (the CLI in a fresh
+   process).
+"""
+
+import statistics
+import subprocess
+import sys
+import time
+import warnings
+
+import numpy as np
+from common import median_time, target
+
+import webfem
+from webfem import load_case, solve_along
+from webfem.models import fe1d
+
+
+def _cold(case):
+    fe1d.LINE.problems.clear()
+    return webfem.solve(case, "fe2d")
+
+
+def _cli(args):
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "webfem", *args], check=True, capture_output=True)
+    return time.perf_counter() - t0
+
+
+def main(groove_map: bool = True):
+    warnings.simplefilter("ignore")
+    base = load_case("cases/base.toml")
+    grooved = load_case("cases/base_grooved.toml")
+    _cold(base)                                          # imports, first-use caches
+    t, r = median_time(lambda: _cold(base), 3)
+    print(f"1. fe2d cold base case: {t:.3f} s (median of 3), {r['iterations']} iterations, "
+          f"{r['n_dofs']:,} unknowns")
+    print(target("fe2d cold base case", t, 0.10))
+
+    cases = [base.updated({"roller.speed": float(u)}) for u in np.geomspace(0.5, 40.0, 24)]
+    t0 = time.perf_counter()
+    out = list(solve_along(cases, "fe2d"))
+    t = time.perf_counter() - t0
+    its = [res["iterations"] for res in out]
+    ok = sum(res["converged"] for res in out)
+    print(f"2. 24-point speed sweep 0.5-40 m/s (log-spaced), solve_along: {t:.2f} s, "
+          f"{ok}/24 converged, {sum(its)} iterations")
+    print(target("24-point speed sweep", t, 2.0))
+    med = statistics.median(its[1:])
+    print(f"3. Newton iterations per continued point (solve + mesh error estimate): median "
+          f"{med:g}, range {min(its[1:])}-{max(its[1:])}; cold first point {its[0]}")
+    print(target("median iterations per continued point", med, 3, ""))
+
+    t = _cli(["traction-loss", "base", "--mu-min", "0.1", "--model", "fe2d"])
+    print(f"4. webfem traction-loss base --mu-min 0.1 --model fe2d: {t:.2f} s (one run, a "
+          "fresh process)")
+    print(target("traction-loss base, fe2d", t, 3.0))
+
+    webfem.solve(grooved, "fe2d")
+    t, r = median_time(lambda: _cold(grooved), 3)
+    print(f"5. one grooved design (cases/base_grooved.toml), cold: {t:.2f} s (median of 3), "
+          f"{r['iterations']} iterations, {r['n_dofs']:,} unknowns")
+    print(target("one grooved design", t, 0.5))
+
+    if not groove_map:
+        print("6. the groove map: not run (--no-map); target 30 s")
+        return
+    t = _cli(["grooves", "base", "--mu-min", "0.2"])
+    print(f"6. webfem grooves base --mu-min 0.2 (32 designs): {t:.1f} s (one run, a fresh "
+          "process)")
+    print(target("32-design groove map", t, 30.0))
+
+
+if __name__ == "__main__":
+    main(groove_map="--no-map" not in sys.argv[1:])

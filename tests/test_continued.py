@@ -1,0 +1,104 @@
+"""Continued 2-D starts (:mod:`webfem.models.continued`): a sweep point started from the
+previous point's state on its moved mesh answers what a cold solve answers, within the two
+answers' stated mesh errors, in fewer Newton steps; a continued start that fails falls back
+to the cold start; a restart that does not fit (other options, a grooved roller) starts
+cold."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from conftest import BASE, GROOVED
+
+import webfem
+from webfem.models import continued
+from webfem.models.readout import READ_QUANTITIES, error_scale
+
+#: Rounding of a read-out quantity, relative: where the web rests on its asperities the
+#: central gap is set by the contact law alone and two meshes' estimates of it are 1e-15
+#: (the change between them is rounding); two answers on different meshes then differ by
+#: rounding too, a few times 1e-15.
+ROUNDING = 1e-12
+
+
+def agree(case, a, b):
+    """Quantities of ``a`` and ``b`` whose difference exceeds their stated errors summed."""
+    out = []
+    for q in READ_QUANTITIES:
+        bound = sum(r[f"error_{q}"] * error_scale(case, q, r[q]) for r in (a, b))
+        bound += ROUNDING * error_scale(case, q, b[q])
+        if not abs(a[q] - b[q]) <= bound:
+            out.append((q, a[q], b[q], bound))
+    return out
+
+
+#: Two stretches of the base case's realistic log-spaced speed sweep (0.5-40 m/s, 24
+#: points, a step of 1.21x): the web resting on its asperities, and taking off.
+PATHS = [np.geomspace(1.07, 1.57, 3), np.geomspace(15.4, 22.6, 3)]
+
+
+@pytest.mark.parametrize("speeds", PATHS, ids=["resting", "taking-off"])
+def test_continued_sweep_equals_cold_solves_within_stated_errors(speeds):
+    cases = [BASE.updated({"roller.speed": float(u)}) for u in speeds]
+    along = list(webfem.solve_along(cases, "fe2d"))
+    for i, (case, a) in enumerate(zip(cases, along)):
+        cold = webfem.solve(case, "fe2d")
+        assert a["converged"] and cold["converged"]
+        assert agree(case, a, cold) == [], case.roller.speed
+        if i == 0:
+            assert "continued" not in a.diagnostics.solver
+            continue
+        # a continued start: no 1-D solve, the previous mesh (moved) or the one its gap asks
+        # for, a secant from the third point on while the mesh stayed
+        note = a.diagnostics.solver["continued"]
+        assert note.startswith("continued") and "line_result" not in a.diagnostics.solver
+        assert a["iterations"] < cold["iterations"], (case.roller.speed, a["iterations"],
+                                                      cold["iterations"])
+
+
+def test_a_continued_start_that_fails_falls_back_cold():
+    """A restart whose state Newton cannot solve from (three times the solved state: the
+    coupled steps fail): the answer is the cold solve's, and its reason says the continued
+    start failed. A state that is not finite is not started from at all."""
+    before = webfem.solve(BASE.updated({"roller.speed": 18.0}), "fe2d")
+    cold = webfem.solve(BASE, "fe2d")
+    for u, why in ((3.0 * before.restart.u, "cold start after the continued start failed"),
+                   (np.full_like(before.restart.u, np.nan), None)):
+        r = webfem.solve(BASE, "fe2d",
+                         initial=dataclasses.replace(before.restart, u=u, prior=None))
+        assert r["converged"]
+        if why:
+            assert why in r.summary.solver_message
+        else:
+            assert "continued" not in r.diagnostics.solver
+        for q in READ_QUANTITIES:
+            assert r[q] == pytest.approx(cold[q], rel=1e-12, abs=1e-15), q
+
+
+def test_a_restart_that_does_not_fit_starts_cold():
+    """Other options (another level) or a grooved roller: no continued start."""
+    r = webfem.solve(BASE.updated({"roller.speed": 18.0}), "fe2d")
+    opts = webfem.models.registry.make_options("fe2d", None, level=1)
+    assert continued.continued_state(BASE, opts, r.restart) is None
+    same = webfem.models.registry.make_options("fe2d", None)
+    assert continued.continued_state(BASE, same, r.restart) is not None
+    assert continued.continued_state(GROOVED, same, r.restart) is None
+
+
+def test_secant_only_on_a_one_parameter_path():
+    c = [BASE.updated({"roller.speed": u}) for u in (10.0, 12.0, 14.4)]
+    assert continued.secant_factor(*c) == pytest.approx(1.0)
+    # two inputs change: no secant
+    assert continued.secant_factor(c[0], c[1], c[2].updated({"web.tension": 90.0})) is None
+    # a jump of more than MAX_SECANT steps: no secant
+    far = BASE.updated({"roller.speed": 12.0 * 1.2 ** 3})
+    assert continued.secant_factor(c[0], c[1], far) is None
+
+
+def test_moved_nodes_keep_the_wrap_edges_and_the_entry_length():
+    X = np.array([-9.0, -6.0, -5.0, -1.0, 0.0, 2.0, 5.0, 8.0])
+    Y = continued.moved_nodes(X, 10.0, 14.0)
+    assert Y[[2, 6]].tolist() == [-7.0, 7.0]                  # the wrap edges
+    assert Y[0] - Y[2] == pytest.approx(X[0] - X[2])          # the entry zone's length
+    assert Y[-1] - Y[-2] == pytest.approx(X[-1] - X[-2])
+    assert np.all(np.diff(Y) > 0)
