@@ -71,8 +71,12 @@ def test_a_continued_start_that_fails_falls_back_cold():
             assert why in r.summary.solver_message
         else:
             assert "continued" not in r.diagnostics.solver
+        # the failed continued start falls back to the cold start itself; a state that is
+        # not finite still leaves the restart's 1-D state (finite) to start the 1-D solve
+        # from, so that answer agrees with the cold one to Newton's tolerance, not bitwise
+        rel = 1e-12 if why else 1e-9
         for q in READ_QUANTITIES:
-            assert r[q] == pytest.approx(cold[q], rel=1e-12, abs=1e-15), q
+            assert r[q] == pytest.approx(cold[q], rel=rel, abs=1e-15), q
 
 
 def test_a_restart_that_does_not_fit_starts_cold():
