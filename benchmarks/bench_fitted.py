@@ -1,0 +1,130 @@
+"""The fitted model's figures (issue 24): coverage of the envelope benchmark's smooth points,
+evaluation speed, and its errors against fe2d on fresh points of another design.
+
+    python benchmarks/bench_fitted.py coverage [--points 2000]
+    python benchmarks/bench_fitted.py speed
+    python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
+
+``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
+a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
+``fresh`` solves points of a Sobol design with another seed (never in the campaign) with
+fe2d and reports the error distribution and how often the stated error holds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+
+def coverage(points: int) -> None:
+    import envelope_sample as es
+    from webfem.errors import InputError
+    from webfem.models import fit_groups as fg
+    possible = inside = 0
+    why: dict[str, int] = {}
+    for i in range(points):
+        p = es.draw(i)
+        if p["grooved"]:
+            continue
+        try:
+            case = es.case_of(p)
+        except InputError:          # T_eff <= 0: no tension holds the web
+            continue
+        if case.h_scale >= case.roller.radius / 100:   # not a thin film
+            continue
+        possible += 1
+        text = fg.outside(case)
+        if text is None:
+            inside += 1
+        else:
+            key = text.split(" = ")[0]
+            why[key] = why.get(key, 0) + 1
+    print(f"envelope points 0-{points - 1}: {possible} smooth and possible, {inside} inside "
+          f"the fitted domain ({inside / possible:.1%}); outside by group: {why}")
+
+
+def speed() -> None:
+    import webfem
+    from webfem import Case
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    fitted.coefficients()
+    case = Case()
+    webfem.solve(case, model="fitted")
+    n = 200
+    t0 = time.perf_counter()
+    for _ in range(n):
+        webfem.solve(case, model="fitted")
+    one = (time.perf_counter() - t0) / n
+    cases = [case.updated({"roller.speed": float(u)}) for u in np.linspace(15, 40, 10_000)]
+    t0 = time.perf_counter()
+    fitted.solve_many(cases)
+    many = time.perf_counter() - t0
+    G = np.repeat(fg.group_array(fg.groups_of(case)), 100_000, axis=0)
+    G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
+    t0 = time.perf_counter()
+    fitted.predict(G)
+    raw = len(G) / (time.perf_counter() - t0)
+    print(f"one solve: {one * 1e3:.3f} ms; solve_many of 10,000: {many:.2f} s; raw profile "
+          f"evaluation: {raw:.3g} points/s")
+
+
+def fresh(points: int, seed: int) -> None:
+    import webfem
+    from webfem.models import fit_groups as fg
+    from webfem.models.readout import READ_QUANTITIES, error_scale
+    from webfem.studies import fit_campaign as fc
+    G = fc.design(points, seed=seed)
+    errs = {q: [] for q in READ_QUANTITIES}
+    ratio = {q: [] for q in READ_QUANTITIES}
+    failed = 0
+    t0 = time.perf_counter()
+    for row in G:
+        case = fc.case_of_groups(dict(zip(fg.GROUPS, row)))
+        try:
+            with fc.time_limit(30.0):
+                ref = webfem.solve(case, model="fe2d", raise_on_failure=False,
+                                   **fc.FE2D_OPTIONS)
+        except TimeoutError:
+            failed += 1
+            continue
+        if not ref["converged"]:
+            failed += 1
+            continue
+        r = webfem.solve(case, model="fitted")
+        for q in READ_QUANTITIES:
+            e = abs(r[q] - ref[q]) / error_scale(case, q, ref[q])
+            errs[q].append(e)
+            ratio[q].append(e / r[f"error_{q}"])
+    print(f"{points} fresh points (seed {seed}), {failed} without an fe2d answer, "
+          f"{time.perf_counter() - t0:.0f} s")
+    for q in READ_QUANTITIES:
+        e, k = np.array(errs[q]), np.array(ratio[q])
+        print(f"  {q:<14} error 50/90/95 %: " + " ".join(
+            f"{v:.3g}" for v in np.percentile(e, [50, 90, 95]))
+              + f"; within stated {np.mean(k <= 1):.0%}, within 2x stated {np.mean(k <= 2):.0%}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("what", choices=("coverage", "speed", "fresh"))
+    ap.add_argument("--points", type=int, default=None)
+    ap.add_argument("--seed", type=int, default=2024)
+    a = ap.parse_args()
+    if a.what == "coverage":
+        coverage(a.points or 2000)
+    elif a.what == "speed":
+        speed()
+    else:
+        fresh(a.points or 40, a.seed)
+
+
+if __name__ == "__main__":
+    main()
