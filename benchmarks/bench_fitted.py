@@ -4,6 +4,7 @@ evaluation speed, and its errors against fe2d on fresh points of another design.
     python benchmarks/bench_fitted.py coverage [--points 2000]
     python benchmarks/bench_fitted.py speed
     python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
+    python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
 
 ``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
 a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
@@ -86,15 +87,10 @@ def fresh(points: int, seed: int) -> None:
     ratio = {q: [] for q in READ_QUANTITIES}
     failed = 0
     t0 = time.perf_counter()
-    for row in G:
-        case = fc.case_of_groups(dict(zip(fg.GROUPS, row)))
-        try:
-            with fc.time_limit(30.0):
-                ref = webfem.solve(case, model="fe2d", raise_on_failure=False,
-                                   **fc.FE2D_OPTIONS)
-        except TimeoutError:
-            failed += 1
-            continue
+    for i, row in enumerate(G):
+        g = dict(zip(fg.GROUPS, row))
+        case = fc.case_of_groups(g)
+        ref = fc.solve_point(i, g, timeout=30.0, options=fc.FE2D_OPTIONS)
         if not ref["converged"]:
             failed += 1
             continue
@@ -112,9 +108,45 @@ def fresh(points: int, seed: int) -> None:
               + f"; within stated {np.mean(k <= 1):.0%}, within 2x stated {np.mean(k <= 2):.0%}")
 
 
+def maps(out: str) -> None:
+    """The hold-out errors of the shipped fit against each group (docs/fit.md)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.models.readout import error_scale
+    from webfem.studies import fit_campaign as fc
+    data = np.load(fitted.COEFFICIENTS)
+    G, V = data["holdout_groups"], data["holdout_values"]
+    pr = fitted.predict(G)
+    E = np.empty(V.shape)
+    for i, g in enumerate(G):
+        case = fc.case_of_groups(dict(zip(fg.GROUPS, g)))
+        v = fitted.read_profile(case, pr["H"][i], pr["P"][i], pr["H_min"][i], pr["s_min"][i])
+        for j, q in enumerate(fitted.QUANTITIES):
+            E[i, j] = abs(v[q] - V[i, j]) / error_scale(case, q, V[i, j])
+    fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), sharey=True)
+    for ax, k in zip(axes.ravel(), range(len(fg.GROUPS))):
+        x = np.where(G[:, k] > 0, G[:, k], fg.KB_FLOOR / 3)
+        for j, q in enumerate(fitted.QUANTITIES):
+            ax.loglog(x, np.maximum(E[:, j], 1e-6), ".", ms=4, label=q)
+        ax.set_xlabel(fg.GROUPS[k] + (" (0 plotted at 3e-4)" if fg.GROUPS[k] == "Kb" else ""))
+        ax.axhline(0.01, color="k", lw=0.6)
+    axes[0, 0].set_ylabel("hold-out error")
+    axes[1, 0].set_ylabel("hold-out error")
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle(f"fitted model: hold-out error against each group ({len(G)} points; "
+                 "line: 1 %)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    print(f"wrote {out}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("coverage", "speed", "fresh"))
+    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps"))
+    ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
     ap.add_argument("--seed", type=int, default=2024)
     a = ap.parse_args()
@@ -122,6 +154,8 @@ def main() -> None:
         coverage(a.points or 2000)
     elif a.what == "speed":
         speed()
+    elif a.what == "maps":
+        maps(a.out)
     else:
         fresh(a.points or 40, a.seed)
 

@@ -40,7 +40,7 @@ from ..case import Case
 from ..fem.scaling import FoilParameters
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
-           "baseline",
+           "baseline", "gap_to_fit", "fit_to_gap",
            "outside", "physics_refusal", "group_array"]
 
 #: The groups, in the order of the fit's coordinates.
@@ -74,26 +74,52 @@ def _clenshaw_curtis(n: int) -> np.ndarray:
 WEIGHTS = _clenshaw_curtis(N_NODES)
 
 
-#: Eshel-Elrod's uniform gap and exit constriction (physics.md) and the edge leakage of a
-#: finite width, 1.48/lambda (docs/model.md): the baseline the fit corrects.
-H0, EXIT, EDGE = 0.643, 0.716, 1.48
+#: Eshel-Elrod's uniform gap and exit constriction (physics.md).
+H0, EXIT = 0.643, 0.716
 
 
 def baseline(G: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The physical baseline of the scaled gap at :data:`NODES` and of the smallest gap, per
-    row of groups ``G``: the wide web's uniform gap H0 lowered by the edge leakage
-    (H0 lam / (lam + 1.48)), falling by K per unit X along the wrap (permeation), the exit
-    constriction EXIT at the exit, and the web resting at H_c = S ln c where that is below
-    (a smooth maximum over a width S). The fit is made to the remainder."""
+    row of groups ``G``: Eshel-Elrod's uniform gap H0 at the wrap's entry, drained along the
+    wrap by the edges and by permeation, the exit constriction EXIT at the exit, and the web
+    resting at H_c = S ln c where that is below (a smooth maximum over a width S). The fit
+    is made to the remainder.
+
+    The edges: the width-averaged film carries T/R with a parabolic pressure across the
+    width, whose side flow drains the Couette flux, dH/dX = -3 H^3 / lam^2, so H = H0 /
+    sqrt(1 + 6 H0^2 X / lam^2) (X from the wrap's entry; at the base case's centre this is
+    the 1.48/lambda edge loss of docs/model.md within 1 %). Permeation: -K X (K beta = Kb
+    over the wrap).
+    """
     G = np.asarray(G, float)
     g = {k: G[:, i:i + 1] for i, k in enumerate(GROUPS)}
-    fluid = H0 * g["lam"] / (g["lam"] + EDGE) - g["Kb"] * (NODES[None, :] + 0.5)
+    X = (NODES[None, :] + 0.5) * g["beta"]
+    fluid = H0 / np.sqrt(1.0 + 6.0 * H0**2 * X / g["lam"] ** 2) - g["Kb"] * (NODES[None, :]
+                                                                             + 0.5)
     H_c = g["S"] * np.log(g["c"])
     low = fluid[:, -1:] * EXIT
 
     def rest(h):
         return H_c + g["S"] * np.logaddexp(0.0, (h - H_c) / g["S"])
     return rest(fluid), rest(low)[:, 0]
+
+
+#: The fitted gap never falls more than this many sigma below the contact gap H_c (where
+#: the asperities alone would carry e^2 = 7.4 times the wrap pressure).
+FLOOR_SIGMAS = 2.0
+
+
+def gap_to_fit(H, S, H_c):
+    """The fit's variable of scaled gaps H: log((H - H_c) / S + FLOOR_SIGMAS), the log of the
+    gap's height over its floor in sigmas (relative where the web flies far above its
+    roughness, absolute in sigma where it rests); gaps at or below the floor are taken
+    1e-3 sigma above it."""
+    return np.log(np.maximum((H - H_c) / S + FLOOR_SIGMAS, 1e-3))
+
+
+def fit_to_gap(y, S, H_c):
+    """The scaled gap of the fit's variable ``y`` (inverse of :func:`gap_to_fit`)."""
+    return H_c + S * (np.exp(y) - FLOOR_SIGMAS)
 
 
 def physics_refusal(case: Case) -> str | None:
@@ -154,13 +180,13 @@ def outside_rows(G: np.ndarray) -> np.ndarray:
     return np.where(bad.any(axis=1), np.argmax(bad, axis=1), -1)
 
 
-def outside(case: Case) -> str | None:
+def outside(case: Case, g: dict[str, float] | None = None) -> str | None:
     """Why ``case`` is outside the fit's domain (the group, its value and its range), or
-    None inside."""
+    None inside; ``g``: its groups, if already known."""
     why = physics_refusal(case)
     if why:
         return why
-    g = groups_of(case)
+    g = groups_of(case) if g is None else g
     i = int(outside_rows(group_array(g))[0])
     if i < 0:
         return None

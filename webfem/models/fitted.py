@@ -76,15 +76,16 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     Y = fit["kernel"](x)
     n = len(fg.NODES)
-    S = np.asarray(G, float)[:, fg.GROUPS.index("S")][:, None]
+    G = np.asarray(G, float)
+    S = G[:, fg.GROUPS.index("S")][:, None]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])[:, None]
     base, base_min = fg.baseline(G)
-    # the fit is the remainder over the physical baseline, in asinh(H / S)
-    y_nodes = Y[:, :n] + np.arcsinh(base / S)
-    y_min = Y[:, 2 * n] + np.arcsinh(base_min / S[:, 0])
-    H = S * np.sinh(y_nodes)
-    H_min = S[:, 0] * np.sinh(y_min)
-    H_min = np.minimum(H_min, H.min(axis=1))
-    region = np.searchsorted(fit["edges"], y_min)
+    # the fit is the remainder over the physical baseline, in the fit's gap variable
+    y_nodes = Y[:, :n] + fg.gap_to_fit(base, S, H_c)
+    y_min = Y[:, 2 * n] + fg.gap_to_fit(base_min, S[:, 0], H_c[:, 0])
+    H = fg.fit_to_gap(y_nodes, S, H_c)
+    H_min = np.minimum(fg.fit_to_gap(y_min, S[:, 0], H_c[:, 0]), H.min(axis=1))
+    region = np.searchsorted(fit["edges"], H_min / S[:, 0])
     return {"H": H, "P": Y[:, n:2 * n], "H_min": H_min,
             "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region}
 
@@ -94,14 +95,16 @@ def read_profile(case: Case, H, P, H_min, s_min) -> dict:
     the FE models' physics functions (readout.py does the same on the FE solution)."""
     hs, xs, pb = case.h_scale, case.x_scale, case.p_bar
     h = H * hs
-    p = case.air.ambient_pressure + P * pb
+    # a fitted suction may overshoot below vacuum, where the slip length has no meaning
+    p = np.maximum(case.air.ambient_pressure + P * pb, 0.1 * case.air.ambient_pressure)
     dpdx = np.gradient(P, fg.NODES * case.beta) * pb / xs
     loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
     W = fg.WEIGHTS
     w = case.web
     Pc = contact_pressure(h, w.modulus_thickness, case.sigma, w.thickness,
                           case.friction.distribution) / pb
-    share = float(np.sum(W * Pc) / max(np.sum(W * (P + Pc)), 1e-300))
+    # a share of the load: a fitted suction may make the film's part nearly cancel contact's
+    share = float(np.clip(np.sum(W * Pc) / max(np.sum(W * (P + Pc)), 1e-300), 0.0, 1.0))
     mu = float(np.sum(W * loc["mu"]))
     shares = [float(np.sum(W * (loc["regime"] == k))) for k in range(3)]
     c = len(fg.NODES) // 2
@@ -129,10 +132,14 @@ def _summary(case: Case, values: dict, errors: np.ndarray, elapsed: float,
     return Summary.from_mapping(s)
 
 
-def _check(case: Case) -> None:
-    why = fg.outside(case)
+def _checked_groups(case: Case) -> dict[str, float]:
+    """The groups of ``case``, or :class:`OutsideDomain` naming why it has none."""
+    why = fg.physics_refusal(case)
+    g = None if why else fg.groups_of(case)
+    why = why or fg.outside(case, g)
     if why:
         raise OutsideDomain(f"no fitted answer: {why}")
+    return g
 
 
 def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = None,
@@ -140,10 +147,10 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
     """The fitted answer for one case, with its gap and friction along the wrap as fields.
     Outside the domain it raises :class:`OutsideDomain` (``raise_on_failure`` is accepted
     for the registry's common signature; a refusal is never returned as an answer)."""
-    _check(case)
     t0 = time.perf_counter()
+    g = _checked_groups(case)
     fit = coefficients(options.coefficients)
-    pr = predict(fg.group_array(fg.groups_of(case)), fit)
+    pr = predict(fg.group_array(g), fit)
     values = read_profile(case, pr["H"][0], pr["P"][0], pr["H_min"][0], pr["s_min"][0])
     elapsed = time.perf_counter() - t0
     summary = _summary(case, values, fit["errors"][pr["region"][0]], elapsed,
@@ -177,13 +184,15 @@ def solve_many(cases, options: FittedOptions | None = None) -> list[Result]:
     A case outside the domain is an :class:`OutsideDomain` error naming it."""
     cases = list(cases)
     options = options or FittedOptions()
-    for i, c in enumerate(cases):
-        why = fg.outside(c)
-        if why:
-            raise OutsideDomain(f"case {i}: no fitted answer: {why}")
-    fit = coefficients(options.coefficients)
     t0 = time.perf_counter()
-    G = np.vstack([fg.group_array(fg.groups_of(c)) for c in cases])
+    groups = []
+    for i, c in enumerate(cases):
+        try:
+            groups.append(_checked_groups(c))
+        except OutsideDomain as err:
+            raise OutsideDomain(f"case {i}: {err}") from None
+    fit = coefficients(options.coefficients)
+    G = np.vstack([fg.group_array(g) for g in groups])
     pr = predict(G, fit)
     elapsed = (time.perf_counter() - t0) / max(len(cases), 1)
     out = []
