@@ -5,6 +5,10 @@ evaluation speed, and its errors against fe2d on fresh points of another design.
     python benchmarks/bench_fitted.py speed
     python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
     python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
+    python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
+
+``methods`` compares fitting methods inside the training set (three quarters fit, the
+fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
 
 ``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
 a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
@@ -143,9 +147,43 @@ def maps(out: str) -> None:
     print(f"wrote {out}")
 
 
+def methods(store: str) -> None:
+    from webfem.models import fit_groups as fg
+    from webfem.studies import fit_build as fb
+    from webfem.sweeps.table import read_table, typed
+    rows = [r for r in typed(read_table(store).rows) if r["converged"] and not r["holdout"]]
+    check, train = rows[3::4], [r for i, r in enumerate(rows) if i % 4 != 3]
+    lo, hi = fg.box()
+    lo = lo.copy()
+    lo[fg.GROUPS.index("Kb")] -= 0.3
+    x = fb.unit(np.array([[r[f"g_{g}"] for g in fg.GROUPS] for r in train]), lo, hi)
+    y = fb.targets(train)
+    gaps = np.r_[np.arange(len(fg.NODES)), 2 * len(fg.NODES)]
+    yc = y.copy()
+    yc[:, gaps] = np.clip(yc[:, gaps], -fb.CLIP, fb.CLIP)
+    n = len(fg.NODES)
+    mean = np.r_[np.zeros(n), y[:, n:2 * n].mean(0), 0.0, y[:, -1].mean()]
+    gp = fb.fit_kernel(x, yc, trend=False)
+    candidates = {
+        "baseline alone": lambda X: np.zeros((len(X), y.shape[1])) + mean,
+        "GP Matern-5/2, no trend, clipped (chosen)": gp,
+        "GP Matern-5/2, no trend, not clipped": fb.fit_kernel(x, y, trend=False),
+        "GP Matern-5/2, linear trend, clipped": fb.fit_kernel(x, yc, trend=True),
+        "thin-plate spline, isotropic, clipped": fb.fit_thin_plate(x, yc, np.ones(x.shape[1])),
+        "thin-plate spline, GP length scales, clipped": fb.fit_thin_plate(x, yc, gp.scales)}
+    print(f"{len(train)} fit, {len(check)} check; median / 95th percentile")
+    for name, kern in candidates.items():
+        e = fb.holdout_errors(check, {"kernel": kern, "lo": lo, "hi": hi,
+                                      "edges": fb.REGION_EDGES})
+        print(f"| {name} | " + " | ".join(
+            f"{np.percentile(e[q], 50):.2g} / {np.percentile(e[q], 95):.2g}"
+            for q in ("h_center", "h_min", "mu", "contact_share")) + " |")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps"))
+    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods"))
+    ap.add_argument("--store", default="out/fit/campaign.csv")
     ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
     ap.add_argument("--seed", type=int, default=2024)
@@ -156,6 +194,8 @@ def main() -> None:
         speed()
     elif a.what == "maps":
         maps(a.out)
+    elif a.what == "methods":
+        methods(a.store)
     else:
         fresh(a.points or 40, a.seed)
 
