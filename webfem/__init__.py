@@ -12,9 +12,9 @@ from .case import Case, CaseError, load_case
 from .sweepspec import Sweep, load_sweep
 from .errors import ConvergenceError, InputError, ValidityWarning
 from .result import Result, SUMMARY_KEYS
-from .api import MODELS, solve, solve_along, sweep
+from .api import MODELS, solve, solve_along, solve_many, sweep
 
 __all__ = ["Case", "CaseError", "InputError", "ConvergenceError", "ValidityWarning",
            "load_case", "load_sweep", "Sweep", "Result", "SUMMARY_KEYS", "MODELS", "solve",
-           "solve_along", "sweep"]
+           "solve_along", "solve_many", "sweep"]
 __version__ = "0.2.0"

@@ -29,7 +29,7 @@ from .models.options import Options
 from .models.registry import MODELS, make_options, model_spec
 from .result import Result
 
-__all__ = ["MODELS", "solve", "solve_along", "sweep"]
+__all__ = ["MODELS", "solve", "solve_along", "solve_many", "sweep"]
 
 
 def solve(case: Case | str | os.PathLike, model: str = "auto", *,
@@ -106,6 +106,30 @@ def solve_along(cases: Iterable[Case], model: str = "auto", options=None, *,
             continue
         previous = result
         yield result
+
+
+def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
+               **values) -> list[Result]:
+    """Solve many cases at once: the closed form and the fitted model evaluate every point
+    in one vectorised call (summaries and their wrap profiles, no film fields); the FE
+    models and auto walk them with :func:`solve_along`. A closed-form point without an
+    answer comes back with ``converged = False``; a case outside the fitted model's domain
+    is an error naming it (:class:`webfem.models.fitted.OutsideDomain`).
+
+    >>> rs = solve_many([Case().updated({"roller.speed": u}) for u in (20.0, 30.0)],
+    ...                 model="closed-form")
+    >>> [r["model"] for r in rs]
+    ['closed-form', 'closed-form']
+    """
+    cases = list(cases)
+    if model == "closed-form":
+        from .models.closed import solve_many as closed_many
+        make_options(model, options, **values)          # checked, though none apply
+        return closed_many(cases)
+    if model == "fitted":
+        from .models.fitted import solve_many as fitted_many
+        return fitted_many(cases, make_options(model, options, **values))
+    return list(solve_along(cases, model, options, **values))
 
 
 def sweep(spec: Sweep | str | os.PathLike, model: str = "auto",

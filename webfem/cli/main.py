@@ -21,7 +21,7 @@ __all__ = ["main", "build_parser", "SUBCOMMANDS"]
 
 #: The subcommand modules of this package, in the order ``webfem --help`` lists them.
 SUBCOMMANDS = ("solve", "sweep", "mesh", "traction_loss", "calibrate", "study", "effects",
-               "idler", "grooves", "keys", "cases", "report")
+               "idler", "grooves", "fit", "keys", "cases", "report")
 
 
 def _modules():

@@ -11,9 +11,12 @@ first:
    rest it on its asperities). Eq. 21 has no exit constriction, so its h_min is never
    within a tolerance below about 0.5: it answers only where mu (``quantity = "mu"``) or the
    central gap is the question.
-2. **fe1d** (tens of milliseconds): infinitely wide, so its gaps are off by the edge leakage
+2. **fitted** (about 0.1 ms): a fit of fe2d solutions in the dimensionless groups
+   (:mod:`webfem.models.fitted`), inside its domain (smooth rollers, the default full physics,
+   the groups' box), judged on the errors its hold-out set states for the point's region.
+3. **fe1d** (tens of milliseconds): infinitely wide, so its gaps are off by the edge leakage
    (about 1.5/lambda).
-3. **fe2d** (about 0.3 s), the reference.
+4. **fe2d** (about 0.3 s), the reference.
 
 With ``quantity = "all"`` (the default) each of the four errors must be within ``tol``;
 otherwise only the named one. The result is the chosen model's, with ``model = "auto"``,
@@ -29,8 +32,9 @@ from ..case import Case
 from ..errors import NoAdmissibleSolution
 from ..physics.validity import BETA_MAX
 from ..result import Result
-from . import closed, fe1d, fe2d
-from .options import AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, fe_options
+from . import closed, fe1d, fe2d, fitted
+from .options import (AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, FittedOptions,
+                      fe_options)
 from .readout import READ_QUANTITIES
 
 __all__ = ["solve", "solve_case", "NAME", "judged", "stated_errors"]
@@ -90,6 +94,10 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
     why.append(text)
     if ok:
         return _answer(r, quantities, tol, why)
+    ok, text, r = _fitted(case, quantities, tol)
+    why.append(text)
+    if ok:
+        return _answer(r, quantities, tol, why)
     # an fe1d that does not converge is not the end: fe2d has its own remedies (the 2-D
     # film's start and continuation), and its failure is the one reported
     r = fe1d.solve_case(case, fe_options(options, FE1DOptions), raise_on_failure=False)
@@ -110,6 +118,19 @@ def _closed(case: Case) -> Result:
     a result with ``converged = False`` and the reason (:func:`closed.no_answer`), never
     returned as an answer."""
     return closed.solve_case(case, ClosedFormOptions(), raise_on_failure=False)
+
+
+def _fitted(case: Case, quantities, tol) -> tuple[bool, str, Result | None]:
+    """Whether the fitted model answers within ``tol``, the text saying so, its result.
+    Outside its domain (or without its coefficients) it is passed over."""
+    try:
+        r = fitted.solve_case(case, FittedOptions())
+    except fitted.OutsideDomain as err:
+        return False, f"fitted: {str(err).removeprefix('no fitted answer: ')}", None
+    except NoAdmissibleSolution as err:
+        return False, f"fitted: {err}", None
+    ok, text = _verdict("fitted", stated_errors(r), quantities, tol)
+    return ok, text + " (hold-out)", r
 
 
 def _closed_verdict(r: Result, quantities, tol) -> tuple[bool, str]:

@@ -32,7 +32,7 @@ import numpy as np
 from ..errors import InputError
 from ..validated import Validated, spec
 
-__all__ = ["Options", "ClosedFormOptions", "FE1DOptions", "FE2DOptions", "AutoOptions",
+__all__ = ["Options", "ClosedFormOptions", "FittedOptions", "FE1DOptions", "FE2DOptions", "AutoOptions",
            "option"]
 
 _TRUE = {"true", "yes", "on", "1"}
@@ -207,6 +207,15 @@ class ClosedFormOptions(Options):
                            lo=2, hi=100_000)
 
 
+@dataclass(frozen=True, repr=False)
+class FittedOptions(Options):
+    """The fitted model (a fit of fe2d solutions in the dimensionless groups)."""
+
+    model: ClassVar[str] = "fitted"
+    coefficients: str | None = option(None, "coefficients file of the fit (none: the one "
+                                      "shipped in the package)", "path", none=True)
+
+
 _METHODS_1D = ("newton", "picard", "picard-staggered")
 
 
@@ -347,7 +356,7 @@ AutoOptions = dataclasses.make_dataclass(
 
 def _option_types() -> tuple[type[Options], ...]:
     """Every model's options type (for the messages that say whose an option is)."""
-    return (ClosedFormOptions, FE1DOptions, FE2DOptions, AutoOptions)
+    return (ClosedFormOptions, FittedOptions, FE1DOptions, FE2DOptions, AutoOptions)
 
 
 def fe_options(auto, target: type[FE1DOptions]) -> FE1DOptions:

@@ -9,7 +9,7 @@ a :class:`webfem.result.Result` or raises :class:`webfem.errors.ConvergenceError
 Examples
 --------
 >>> sorted(MODELS)
-['auto', 'closed-form', 'fe1d', 'fe2d']
+['auto', 'closed-form', 'fe1d', 'fe2d', 'fitted']
 >>> MODELS["fe1d"].options().level
 0
 """
@@ -20,8 +20,9 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..errors import InputError
-from . import auto, closed, fe1d, fe2d
-from .options import AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions, Options
+from . import auto, closed, fe1d, fe2d, fitted
+from .options import (AutoOptions, ClosedFormOptions, FE1DOptions, FE2DOptions,
+                      FittedOptions, Options)
 
 __all__ = ["ModelSpec", "MODELS", "model_spec", "make_options"]
 
@@ -40,6 +41,9 @@ class ModelSpec:
 MODELS: dict[str, ModelSpec] = {spec.name: spec for spec in (
     ModelSpec("closed-form", closed.solve_case, ClosedFormOptions,
               "the paper's Eq. 21 gap with Eqs. 10-13, 28-31 (microseconds)"),
+    ModelSpec("fitted", fitted.solve_case, FittedOptions,
+              "a fit of fe2d solutions in the dimensionless groups, errors from a hold-out "
+              "set (smooth rollers, inside its domain; ~0.1 ms)"),
     ModelSpec("fe1d", fe1d.solve_case, FE1DOptions,
               "1-D finite elements: infinitely wide film coupled to the web (~0.1 s)"),
     ModelSpec("fe2d", fe2d.solve_case, FE2DOptions,

@@ -1,0 +1,204 @@
+"""The fitted model's figures (issue 24): coverage of the envelope benchmark's smooth points,
+evaluation speed, and its errors against fe2d on fresh points of another design.
+
+    python benchmarks/bench_fitted.py coverage [--points 2000]
+    python benchmarks/bench_fitted.py speed
+    python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
+    python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
+    python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
+
+``methods`` compares fitting methods inside the training set (three quarters fit, the
+fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
+
+``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
+a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
+``fresh`` solves points of a Sobol design with another seed (never in the campaign) with
+fe2d and reports the error distribution and how often the stated error holds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+
+def coverage(points: int) -> None:
+    import envelope_sample as es
+    from webfem.errors import InputError
+    from webfem.models import fit_groups as fg
+    possible = inside = 0
+    why: dict[str, int] = {}
+    for i in range(points):
+        p = es.draw(i)
+        if p["grooved"]:
+            continue
+        try:
+            case = es.case_of(p)
+        except InputError:          # T_eff <= 0: no tension holds the web
+            continue
+        if case.h_scale >= case.roller.radius / 100:   # not a thin film
+            continue
+        possible += 1
+        text = fg.outside(case)
+        if text is None:
+            inside += 1
+        else:
+            key = text.split(" = ")[0]
+            why[key] = why.get(key, 0) + 1
+    print(f"envelope points 0-{points - 1}: {possible} smooth and possible, {inside} inside "
+          f"the fitted domain ({inside / possible:.1%}); outside by group: {why}")
+
+
+def speed() -> None:
+    import webfem
+    from webfem import Case
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    fitted.coefficients()
+    case = Case()
+    webfem.solve(case, model="fitted")
+    n = 200
+    t0 = time.perf_counter()
+    for _ in range(n):
+        webfem.solve(case, model="fitted")
+    one = (time.perf_counter() - t0) / n
+    cases = [case.updated({"roller.speed": float(u)}) for u in np.linspace(15, 40, 10_000)]
+    t0 = time.perf_counter()
+    fitted.solve_many(cases)
+    many = time.perf_counter() - t0
+    G = np.repeat(fg.group_array(fg.groups_of(case)), 100_000, axis=0)
+    G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
+    t0 = time.perf_counter()
+    fitted.predict(G)
+    raw = len(G) / (time.perf_counter() - t0)
+    print(f"one solve: {one * 1e3:.3f} ms; solve_many of 10,000: {many:.2f} s; raw profile "
+          f"evaluation: {raw:.3g} points/s")
+
+
+def fresh(points: int, seed: int) -> None:
+    import webfem
+    from webfem.models import fit_groups as fg
+    from webfem.models.readout import READ_QUANTITIES, error_scale
+    from webfem.studies import fit_campaign as fc
+    G = fc.design(points, seed=seed)
+    errs = {q: [] for q in READ_QUANTITIES}
+    ratio = {q: [] for q in READ_QUANTITIES}
+    failed = 0
+    t0 = time.perf_counter()
+    for i, row in enumerate(G):
+        g = dict(zip(fg.GROUPS, row))
+        case = fc.case_of_groups(g)
+        ref = fc.solve_point(i, g, timeout=30.0, options=fc.FE2D_OPTIONS)
+        if not ref["converged"]:
+            failed += 1
+            continue
+        r = webfem.solve(case, model="fitted")
+        for q in READ_QUANTITIES:
+            e = abs(r[q] - ref[q]) / error_scale(case, q, ref[q])
+            errs[q].append(e)
+            ratio[q].append(e / r[f"error_{q}"])
+    print(f"{points} fresh points (seed {seed}), {failed} without an fe2d answer, "
+          f"{time.perf_counter() - t0:.0f} s")
+    for q in READ_QUANTITIES:
+        e, k = np.array(errs[q]), np.array(ratio[q])
+        print(f"  {q:<14} error 50/90/95 %: " + " ".join(
+            f"{v:.3g}" for v in np.percentile(e, [50, 90, 95]))
+              + f"; within stated {np.mean(k <= 1):.0%}, within 2x stated {np.mean(k <= 2):.0%}")
+
+
+def maps(out: str) -> None:
+    """The hold-out errors of the shipped fit against each group (docs/fit.md)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.models.readout import error_scale
+    from webfem.studies import fit_campaign as fc
+    data = np.load(fitted.COEFFICIENTS)
+    G, V = data["holdout_groups"], data["holdout_values"]
+    pr = fitted.predict(G)
+    E = np.empty(V.shape)
+    for i, g in enumerate(G):
+        case = fc.case_of_groups(dict(zip(fg.GROUPS, g)))
+        v = fitted.read_profile(case, pr["H"][i], pr["P"][i], pr["H_min"][i], pr["s_min"][i])
+        for j, q in enumerate(fitted.QUANTITIES):
+            E[i, j] = abs(v[q] - V[i, j]) / error_scale(case, q, V[i, j])
+    fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), sharey=True)
+    for ax, k in zip(axes.ravel(), range(len(fg.GROUPS))):
+        x = np.where(G[:, k] > 0, G[:, k], fg.KB_FLOOR / 3)
+        for j, q in enumerate(fitted.QUANTITIES):
+            ax.loglog(x, np.maximum(E[:, j], 1e-6), ".", ms=4, label=q)
+        ax.set_xlabel(fg.GROUPS[k] + (" (0 plotted at 3e-4)" if fg.GROUPS[k] == "Kb" else ""))
+        ax.axhline(0.01, color="k", lw=0.6)
+    axes[0, 0].set_ylabel("hold-out error")
+    axes[1, 0].set_ylabel("hold-out error")
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle(f"fitted model: hold-out error against each group ({len(G)} points; "
+                 "line: 1 %)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    print(f"wrote {out}")
+
+
+def methods(store: str) -> None:
+    from webfem.models import fit_groups as fg
+    from webfem.studies import fit_build as fb
+    from webfem.sweeps.table import read_table, typed
+    rows = [r for r in typed(read_table(store).rows) if r["converged"] and not r["holdout"]]
+    check, train = rows[3::4], [r for i, r in enumerate(rows) if i % 4 != 3]
+    lo, hi = fg.box()
+    lo = lo.copy()
+    lo[fg.GROUPS.index("Kb")] -= 0.3
+    x = fb.unit(np.array([[r[f"g_{g}"] for g in fg.GROUPS] for r in train]), lo, hi)
+    y = fb.targets(train)
+    gaps = np.r_[np.arange(len(fg.NODES)), 2 * len(fg.NODES)]
+    yc = y.copy()
+    yc[:, gaps] = np.clip(yc[:, gaps], -fb.CLIP, fb.CLIP)
+    n = len(fg.NODES)
+    mean = np.r_[np.zeros(n), y[:, n:2 * n].mean(0), 0.0, y[:, -1].mean()]
+    gp = fb.fit_kernel(x, yc, trend=False)
+    candidates = {
+        "baseline alone": lambda X: np.zeros((len(X), y.shape[1])) + mean,
+        "GP Matern-5/2, no trend, clipped (chosen)": gp,
+        "GP Matern-5/2, no trend, not clipped": fb.fit_kernel(x, y, trend=False),
+        "GP Matern-5/2, linear trend, clipped": fb.fit_kernel(x, yc, trend=True),
+        "thin-plate spline, isotropic, clipped": fb.fit_thin_plate(x, yc, np.ones(x.shape[1])),
+        "thin-plate spline, GP length scales, clipped": fb.fit_thin_plate(x, yc, gp.scales)}
+    print(f"{len(train)} fit, {len(check)} check; median / 95th percentile")
+    for name, kern in candidates.items():
+        e = fb.holdout_errors(check, {"kernel": kern, "lo": lo, "hi": hi,
+                                      "edges": fb.REGION_EDGES})
+        print(f"| {name} | " + " | ".join(
+            f"{np.percentile(e[q], 50):.2g} / {np.percentile(e[q], 95):.2g}"
+            for q in ("h_center", "h_min", "mu", "contact_share")) + " |")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods"))
+    ap.add_argument("--store", default="out/fit/campaign.csv")
+    ap.add_argument("--out", default="docs/fit_errors.png")
+    ap.add_argument("--points", type=int, default=None)
+    ap.add_argument("--seed", type=int, default=2024)
+    a = ap.parse_args()
+    if a.what == "coverage":
+        coverage(a.points or 2000)
+    elif a.what == "speed":
+        speed()
+    elif a.what == "maps":
+        maps(a.out)
+    elif a.what == "methods":
+        methods(a.store)
+    else:
+        fresh(a.points or 40, a.seed)
+
+
+if __name__ == "__main__":
+    main()

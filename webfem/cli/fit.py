@@ -1,0 +1,66 @@
+"""``webfem fit build``: the fitted model's training campaign (fe2d over a Sobol design in the
+dimensionless groups, resumable) and the fit, written as the coefficients file."""
+
+from __future__ import annotations
+
+import textwrap
+import time
+from pathlib import Path
+
+from ..errors import InputError
+from .common import HELP_FORMATTER, Progress, add_quiet_argument, output_folder, print_json
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser(
+        "fit", help="build the fitted model: fe2d over a design in the dimensionless "
+                    "groups (resumable), then the fit and its hold-out errors",
+        formatter_class=HELP_FORMATTER,
+        description=textwrap.fill(
+            "fit build: solve the first --points points of the scrambled Sobol design over "
+            "the fitted model's domain with fe2d into --store/campaign.csv (each row saved as "
+            "it finishes: a run interrupted continues where it stopped when run again), fit "
+            "the training points (every fifth point is held out and states the errors) and "
+            "write the coefficients to --out. --fit-only fits what the store holds.", 88))
+    p.add_argument("action", choices=("build",), help="what to do (build)")
+    p.add_argument("--points", type=int, default=64,
+                   help="design points to solve (default 64; the shipped fit: README)")
+    p.add_argument("--store", default="fit_campaign",
+                   help="folder of the resumable campaign table (default fit_campaign)")
+    p.add_argument("--out", default=None,
+                   help="coefficients file to write (default STORE/fitted_coefficients.npz)")
+    p.add_argument("--timeout", type=float, default=12.0,
+                   help="seconds one fe2d solve may take before it is recorded as failed")
+    p.add_argument("--fit-only", action="store_true",
+                   help="fit the rows the store holds, solve nothing")
+    p.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_quiet_argument(p)
+
+
+def run(args) -> int:
+    from ..studies import fit_build, fit_campaign
+    if not 0.0 < args.timeout <= 3600.0:
+        raise InputError(f"--timeout = {args.timeout:g} is out of range: must be > 0 and "
+                         "<= 3600 s")
+    folder = output_folder(args.store, "--store")
+    csv = folder / "campaign.csv"
+    out = Path(args.out) if args.out else folder / "fitted_coefficients.npz"
+    t0 = time.perf_counter()
+    if not args.fit_only:
+        fit_campaign.run(csv, args.points, timeout=args.timeout,
+                         progress=Progress(args.quiet, "design points"))
+    elif not csv.is_file():
+        raise InputError(f"--fit-only: no campaign table {csv}: run without --fit-only first")
+    solved = time.perf_counter() - t0
+    report = fit_build.build(csv, out)
+    report.update(campaign_seconds=solved, total_seconds=time.perf_counter() - t0,
+                  coefficients=str(out))
+    if args.json:
+        print_json(report, units=False)
+        return 0
+    print(f"{report['train']} training and {report['holdout']} hold-out fe2d solutions "
+          f"({report['failed']} failed) in {solved:.0f} s; coefficients: {out}")
+    print("hold-out error percentiles 50/90/95/max:")
+    for q, v in report["percentiles_50_90_95_max"].items():
+        print(f"  {q:<14} " + " ".join(f"{x:.3g}" for x in v))
+    return 0

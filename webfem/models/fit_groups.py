@@ -1,0 +1,196 @@
+"""The dimensionless groups the fitted model is a function of, its domain and its profile nodes.
+
+The scaled film problem fe2d solves on a smooth roller (:class:`webfem.fem.scaling.
+FoilParameters`) depends on a case only through eight groups, so one fit serves every
+material, roller and speed:
+
+``beta``   wrap length B / eps^(1/3);
+``lam``    width L / (2 R eps^(1/3));
+``Kb``     permeation over the whole wrap, K beta (K = 12 k / (R t eps^(4/3)): the uniform
+           gap falls by K per unit of X, so K beta is the fall from entry to exit);
+``d``      compressibility T_eff / (R p_a);
+``slip``   first-order slip 6 a lambda_a / (R eps^(2/3));
+``Dn``     bending D / (T_eff (R eps^(1/3))^2);
+``c``      contact stiffness over wrap pressure E_b sigma R / (2 t T_eff);
+``S``      roughness over the film scale sigma / (R eps^(2/3)).
+
+Inertia folds into T_eff. The fit is made in the coordinates :func:`coordinates` (log10 of
+each group; ``Kb`` as log10(Kb + KB_FLOOR), so an impermeable web sits at the bottom of its
+axis). :data:`DOMAIN` is the box the campaign sampled; :func:`outside` names a group outside
+it. The gap and pressure are fitted at the fixed scaled positions :data:`NODES` along the
+wrap (Chebyshev-Lobatto, dense at the wrap's edges where the entry and exit zones are).
+
+Examples
+--------
+>>> from webfem import Case
+>>> g = groups_of(Case())
+>>> sorted(g) == sorted(GROUPS)
+True
+>>> outside(Case()) is None
+True
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..case import Case
+from ..fem.scaling import FoilParameters
+
+__all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
+           "baseline", "gap_to_fit", "fit_to_gap",
+           "outside", "physics_refusal", "group_array"]
+
+#: The groups, in the order of the fit's coordinates.
+GROUPS = ("beta", "lam", "Kb", "d", "slip", "Dn", "c", "S")
+#: The box the campaign sampled, per group (lo, hi); Kb's lower end is an impermeable web.
+#: Chosen to hold >= 90 % of the envelope benchmark's smooth points (docs/fit.md).
+DOMAIN = {"beta": (3.5, 350.0), "lam": (1.2, 4000.0), "Kb": (0.0, 300.0),
+          "d": (7e-4, 0.22), "slip": (7e-4, 0.45), "Dn": (2e-3, 1e4), "c": (0.25, 5e4),
+          "S": (2e-4, 3.0)}
+#: Kb's offset in its log coordinate: below it permeation moves the gap by < 0.1 % of H0.
+KB_FLOOR = 1e-3
+#: The fitted profile's positions along the wrap, as a fraction of it (-1/2 entry, 1/2 exit).
+N_NODES = 33
+NODES = -0.5 * np.cos(np.pi * np.arange(N_NODES) / (N_NODES - 1))
+
+
+def _clenshaw_curtis(n: int) -> np.ndarray:
+    """Clenshaw-Curtis weights on the n Chebyshev-Lobatto nodes of [-1/2, 1/2], summing
+    to 1 (the wrap average)."""
+    N = n - 1
+    theta = np.pi * np.arange(n) / N
+    w = np.zeros(n)
+    for j in range(n):
+        s = sum((1.0 if 2 * k == N else 2.0) / (4 * k * k - 1) * math.cos(2 * k * theta[j])
+                for k in range(1, N // 2 + 1))
+        w[j] = (1.0 - s) / N * (1.0 if j in (0, N) else 2.0)
+    return w / w.sum()
+
+
+#: Quadrature weights of the wrap average on :data:`NODES`.
+WEIGHTS = _clenshaw_curtis(N_NODES)
+
+
+#: Eshel-Elrod's uniform gap and exit constriction (physics.md).
+H0, EXIT = 0.643, 0.716
+
+
+def baseline(G: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The physical baseline of the scaled gap at :data:`NODES` and of the smallest gap, per
+    row of groups ``G``: Eshel-Elrod's uniform gap H0 at the wrap's entry, drained along the
+    wrap by the edges and by permeation, the exit constriction EXIT at the exit, and the web
+    resting at H_c = S ln c where that is below (a smooth maximum over a width S). The fit
+    is made to the remainder.
+
+    The edges: the width-averaged film carries T/R with a parabolic pressure across the
+    width, whose side flow drains the Couette flux, dH/dX = -3 H^3 / lam^2, so H = H0 /
+    sqrt(1 + 6 H0^2 X / lam^2) (X from the wrap's entry; at the base case's centre this is
+    the 1.48/lambda edge loss of docs/model.md within 1 %). Permeation: -K X (K beta = Kb
+    over the wrap).
+    """
+    G = np.asarray(G, float)
+    g = {k: G[:, i:i + 1] for i, k in enumerate(GROUPS)}
+    X = (NODES[None, :] + 0.5) * g["beta"]
+    fluid = H0 / np.sqrt(1.0 + 6.0 * H0**2 * X / g["lam"] ** 2) - g["Kb"] * (NODES[None, :]
+                                                                             + 0.5)
+    H_c = g["S"] * np.log(g["c"])
+    low = fluid[:, -1:] * EXIT
+
+    def rest(h):
+        return H_c + g["S"] * np.logaddexp(0.0, (h - H_c) / g["S"])
+    return rest(fluid), rest(low)[:, 0]
+
+
+#: The fitted gap never falls more than this many sigma below the contact gap H_c (where
+#: the asperities alone would carry e^2 = 7.4 times the wrap pressure).
+FLOOR_SIGMAS = 2.0
+
+
+def gap_to_fit(H, S, H_c):
+    """The fit's variable of scaled gaps H: log((H - H_c) / S + FLOOR_SIGMAS), the log of the
+    gap's height over its floor in sigmas (relative where the web flies far above its
+    roughness, absolute in sigma where it rests); gaps at or below the floor are taken
+    1e-3 sigma above it."""
+    return np.log(np.maximum((H - H_c) / S + FLOOR_SIGMAS, 1e-3))
+
+
+def fit_to_gap(y, S, H_c):
+    """The scaled gap of the fit's variable ``y`` (inverse of :func:`gap_to_fit`)."""
+    return H_c + S * (np.exp(y) - FLOOR_SIGMAS)
+
+
+def physics_refusal(case: Case) -> str | None:
+    """Why the fit does not apply to ``case``'s physics switches, or None. The campaign
+    solved smooth rollers with the default full physics only."""
+    if case.grooved:
+        return ("grooved roller: the fit covers smooth rollers only (the periodic cell adds "
+                "pitch, land fraction and depth groups); use fe2d")
+    wanted = {"model.physics": (case.model.physics, "full"),
+              "air.slip": (case.air.slip, "first-order"),
+              "air.roughness_flow": (case.air.roughness_flow, "mean-gap"),
+              "web.permeation": (case.web.permeation, "isothermal"),
+              "friction.distribution": (case.friction.distribution, "exponential"),
+              "friction.variant": (case.friction.variant, "loads")}
+    for key, (value, need) in wanted.items():
+        if value != need:
+            return (f"{key} = {value!r}: the fit was trained with {key} = {need!r} only; "
+                    "use fe1d or fe2d")
+    return None
+
+
+def groups_of(case: Case) -> dict[str, float]:
+    """The eight groups of ``case`` (a smooth roller; see the module text)."""
+    prm = FoilParameters.from_case(case)
+    return {"beta": prm.beta, "lam": case.lam, "Kb": prm.K * prm.beta, "d": prm.d,
+            "slip": prm.slip, "Dn": prm.Dn, "c": prm.c, "S": prm.S}
+
+
+def group_array(groups: dict[str, np.ndarray]) -> np.ndarray:
+    """Groups (a dict of equal-length arrays or floats) as an (n, 8) array."""
+    return np.column_stack([np.atleast_1d(np.asarray(groups[g], float)) for g in GROUPS])
+
+
+def coordinates(G: np.ndarray) -> np.ndarray:
+    """The fit's coordinates of groups ``G`` ((n, 8), :data:`GROUPS` order): log10 of
+    each, Kb as log10(Kb + KB_FLOOR)."""
+    G = np.asarray(G, float)
+    out = np.log10(np.maximum(G, 1e-300))
+    kb = GROUPS.index("Kb")
+    out[:, kb] = np.log10(G[:, kb] + KB_FLOOR)
+    return out
+
+
+def box() -> tuple[np.ndarray, np.ndarray]:
+    """The domain in the fit's coordinates: (lower, upper) arrays."""
+    lo = np.array([[DOMAIN[g][0] for g in GROUPS]])
+    hi = np.array([[DOMAIN[g][1] for g in GROUPS]])
+    return coordinates(lo)[0], coordinates(hi)[0]
+
+
+def outside_rows(G: np.ndarray) -> np.ndarray:
+    """Per row of groups ``G``, the index of the first group outside :data:`DOMAIN`, or
+    -1 inside."""
+    G = np.asarray(G, float)
+    lo = np.array([DOMAIN[g][0] for g in GROUPS])
+    hi = np.array([DOMAIN[g][1] for g in GROUPS])
+    bad = ~((G >= lo) & (G <= hi))
+    return np.where(bad.any(axis=1), np.argmax(bad, axis=1), -1)
+
+
+def outside(case: Case, g: dict[str, float] | None = None) -> str | None:
+    """Why ``case`` is outside the fit's domain (the group, its value and its range), or
+    None inside; ``g``: its groups, if already known."""
+    why = physics_refusal(case)
+    if why:
+        return why
+    g = groups_of(case) if g is None else g
+    i = int(outside_rows(group_array(g))[0])
+    if i < 0:
+        return None
+    name = GROUPS[i]
+    lo, hi = DOMAIN[name]
+    return (f"{name} = {g[name]:.4g} is outside the fitted model's domain {lo:g} <= {name} "
+            f"<= {hi:g} (docs/fit.md lists the groups); use fe1d or fe2d")

@@ -1,0 +1,195 @@
+"""The fitted model's training campaign: a space-filling design in the groups, solved by fe2d.
+
+The design is a scrambled Sobol sequence (:mod:`scipy.stats.qmc`) in the fit's coordinates
+over :data:`~webfem.models.fit_groups.DOMAIN`; its prefix of any length is space-filling, so
+a campaign can stop anywhere and the fit uses what is solved. Every fifth point (n % 5 == 4)
+is held out: never used in fitting, it states the fit's error. Each point becomes a real
+case with those groups (:func:`case_of_groups`: a held web, newsprint's friction constants,
+every other number chosen to realise the groups within the keys' valid ranges) and is
+solved by fe2d with its default mesh error target (1e-3, well below the fit's). The rows go
+to a resumable CSV (:func:`webfem.sweeps.keyed.run_points`): re-running the same command
+continues where it stopped.
+
+Examples
+--------
+>>> from webfem.models.fit_groups import groups_of, DOMAIN
+>>> g = {k: (lo * hi) ** 0.5 if lo > 0 else 1.0 for k, (lo, hi) in DOMAIN.items()}
+>>> back = groups_of(case_of_groups(g))
+>>> all(abs(back[k] / g[k] - 1) < 1e-9 for k in g)
+True
+"""
+
+from __future__ import annotations
+
+import math
+import signal
+import time
+from contextlib import contextmanager
+
+import numpy as np
+
+from ..case import Case
+from ..errors import InputError
+from ..models.fit_groups import GROUPS, KB_FLOOR, NODES, box, coordinates
+from ..models.registry import make_options, model_spec
+from ..sweeps.keyed import run_points
+
+__all__ = ["design", "case_of_groups", "solve_point", "run", "COLUMNS", "HOLD_OUT_EVERY"]
+
+#: Every this many points one is held out (n % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1).
+HOLD_OUT_EVERY = 5
+#: The fe2d summary values each row keeps besides the profile.
+KEPT = ("h_center", "h_inlet", "h_outlet", "h_min", "x_min", "mu", "contact_share",
+        "share_boundary", "share_mixed", "share_fluid", "error_h_center", "error_h_min",
+        "error_mu", "error_contact_share", "h_scale", "x_scale", "p_bar")
+COLUMNS = (("n", "holdout") + tuple(f"g_{g}" for g in GROUPS) + ("converged", "seconds")
+           + KEPT + tuple(f"H{j}" for j in range(len(NODES)))
+           + tuple(f"P{j}" for j in range(len(NODES))) + ("message",))
+#: The friction constants and air of every campaign case (newsprint's; they do not enter
+#: the scaled film problem, only the friction computed from it).
+_BASE = {"web.speed": 0.0, "air.viscosity": 1.81e-5, "friction.roughness": "web",
+         "roller.roughness": 0.0, "web.density": 700.0}
+#: Target surface speed [m/s] of a campaign case (any would do: only the groups matter).
+_SPEED = 10.0
+
+
+def design(n: int, seed: int = 24) -> np.ndarray:
+    """The first ``n`` points of the scrambled Sobol design, as groups ((n, 8), GROUPS
+    order). Kb below KB_FLOOR's bottom end is an impermeable web (0)."""
+    from scipy.stats import qmc
+    lo, hi = box()
+    lo = lo.copy()
+    kb = GROUPS.index("Kb")
+    lo[kb] -= 0.3    # a share of the design (0.3 of the axis's length) at Kb = 0 exactly
+    m = max(int(math.ceil(math.log2(max(n, 2)))), 1)
+    u = qmc.Sobol(len(GROUPS), scramble=True, seed=seed).random_base2(m)[:n]
+    x = lo + u * (hi - lo)
+    G = 10.0 ** x
+    G[:, kb] = np.maximum(10.0 ** x[:, kb] - KB_FLOOR, 0.0)
+    return G
+
+
+def case_of_groups(g: dict[str, float]) -> Case:
+    """A held-web case whose groups are ``g`` (dict by :data:`GROUPS`): eps^(1/3) small
+    enough for a thin film and a wrap <= 180 deg, T, R and p_a from d and the speed, then
+    the web's numbers from the other groups."""
+    beta, lam, d = g["beta"], g["lam"], g["d"]
+    e3 = min(0.05, 2.5 / beta)                 # eps^(1/3): B = beta e3 <= 2.5 rad
+    eps = e3**3
+    eta = _BASE["air.viscosity"]
+    L_max = 4.0 / (2.0 * e3 * lam)            # R that keeps the width <= 4 m
+    U = _SPEED
+    for _ in range(4):
+        T = 6.0 * eta * U / eps
+        # R p_a = T / d; the base atmosphere where the radius allows it
+        R = max(min(max(T / (d * 101325.0), 0.01), 2.0, L_max), 0.0011 / (2.0 * e3 * lam))
+        p_a = T / (d * R)
+        if 2e3 <= p_a <= 5e6:
+            break
+        U = min(U * (5e5 / p_a), 300.0)      # the speed moves T, hence p_a, into range
+    h_s, x_s = R * eps ** (2 / 3), R * e3
+    sigma = g["S"] * h_s
+    # thickness: E_b = 2 c t T / (sigma R) and k = K R t eps^(4/3) / 12 within range
+    K = g["Kb"] / beta
+    t = min(max(1e6 * sigma * R / (2.0 * g["c"] * T), 1e-6), 1e-2)   # E_b about 1 MPa
+    if K > 0.0:      # and a permeability k <= 1e-9 m^2
+        t = max(min(t, 1.2e-8 / (K * R * eps ** (4 / 3))), 1e-6)
+    E_b = 2.0 * g["c"] * t * T / (sigma * R)
+    return Case().updated({
+        **_BASE, "roller.radius": R, "roller.speed": U, "web.tension": T,
+        "air.ambient_pressure": p_a, "web.width": 2.0 * R * e3 * lam,
+        "wrap.angle_deg": math.degrees(beta * e3), "web.thickness": t,
+        "web.roughness": sigma, "web.modulus_thickness": E_b,
+        "web.permeability": K * R * t * eps ** (4 / 3) / 12.0,
+        "web.bending_stiffness": g["Dn"] * T * x_s**2,
+        "air.mean_free_path": g["slip"] * h_s / 6.0})
+
+
+@contextmanager
+def time_limit(seconds: float | None):
+    """Raise TimeoutError after ``seconds`` (main thread, Unix); no limit where the
+    platform has no SIGALRM."""
+    if not seconds or not hasattr(signal, "SIGALRM"):
+        yield
+        return
+    def stop(signum, frame):
+        raise TimeoutError(f"no answer within {seconds:g} s")
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def profile_of(result) -> tuple[np.ndarray, np.ndarray]:
+    """The scaled gap H and film pressure P of an FE result at :data:`NODES` of the wrap
+    (linear interpolation of the node fields, which are far finer than the nodes)."""
+    case = result.case
+    X = result.fields.x / case.x_scale
+    at = NODES * case.beta
+    H = np.interp(at, X, result.fields.h) / case.h_scale
+    P = np.interp(at, X, result.fields.p_rel) / case.p_bar
+    return H, P
+
+
+def solve_point(n: int, g: dict[str, float], *, timeout: float | None = 120.0,
+                options=None) -> dict:
+    """The row of design point ``n`` with groups ``g``: fe2d's summary values, the
+    profile at :data:`NODES`, or ``converged = False`` and the message."""
+    row = {c: None for c in COLUMNS}
+    row.update(n=n, holdout=int(n % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1),
+               **{f"g_{k}": float(g[k]) for k in GROUPS}, converged=False, message="")
+    t0 = time.perf_counter()
+    try:
+        case = case_of_groups(g)
+        opts = make_options("fe2d", options)
+        with time_limit(timeout):
+            r = model_spec("fe2d").solve(case, opts, raise_on_failure=False)
+    except (InputError, TimeoutError, ArithmeticError, RuntimeError, ValueError) as err:
+        row.update(seconds=time.perf_counter() - t0, message=f"{type(err).__name__}: {err}")
+        return row
+    row["seconds"] = time.perf_counter() - t0
+    s = r.summary
+    if not s.converged:
+        row["message"] = s.solver_message or "did not converge"
+        return row
+    H, P = profile_of(r)
+    row.update({k: s.get(k) for k in KEPT if k not in ("h_scale", "x_scale", "p_bar")},
+               h_scale=case.h_scale, x_scale=case.x_scale, p_bar=case.p_bar,
+               converged=True, **{f"H{j}": float(v) for j, v in enumerate(H)},
+               **{f"P{j}": float(v) for j, v in enumerate(P)})
+    return row
+
+
+#: fe2d's options in the campaign: the default mesh without its error estimate (the
+#: estimate's second and finer meshes cost 2-5x; on a sample of the design the default
+#: mesh's change on refinement was <= 3e-3 in every quantity, far below the fit's error).
+FE2D_OPTIONS = {"estimate": False}
+
+
+def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
+        options=None, progress=None) -> list[dict]:
+    """Solve (or resume) the first ``n`` design points into ``out_csv``; returns the rows.
+    Points that fail are kept (each is solved from cold: a re-run would repeat it).
+    ``options``: fe2d's (default :data:`FE2D_OPTIONS`)."""
+    options = dict(FE2D_OPTIONS if options is None else options)
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
+        raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
+    G = design(n, seed)
+    from .. import __version__
+    sig = {"table": "fit-campaign", "parameter": "groups", "model": "fe2d", "points": n,
+           "seed": seed, "webfem": __version__, "options": options,
+           "domain": [[float(a), float(b)] for a, b in zip(*box())]}
+    # the key is the design index: the same seed gives the same point
+    return run_points(out_csv, sig, COLUMNS,
+                      ("n",), [(float(i),) for i in range(n)],
+                      lambda i: solve_point(i, dict(zip(GROUPS, G[i])), timeout=timeout,
+                                                options=options),
+                      progress=progress, keep_failures=True)
+
+
+def coordinates_of_rows(rows) -> np.ndarray:
+    """The fit's coordinates of campaign rows."""
+    return coordinates(np.array([[r[f"g_{g}"] for g in GROUPS] for r in rows], float))
