@@ -124,3 +124,95 @@ def test_stated_errors_bound_the_true_error_on_fresh_points():
             within2 += true <= 2.0 * r[f"error_{q}"]
     assert pairs >= 16
     assert within >= 0.8 * pairs and within2 >= 0.9 * pairs
+
+
+# -- the vectorised evaluation (solve_many) --------------------------------------------------
+
+#: Cases inside the domain that exercise every branch of the read-out: sliding and not (an
+#: idler), a moving web (inertia), an idler load, a permeable web, a resting web.
+VARIED = [Case(), Case().updated({"roller.speed": 10.0, "web.speed": 10.0}),
+          Case().updated({"web.permeability": 1e-14, "roller.speed": 40.0}),
+          Case().updated({"web.speed": 15.0, "roller.drag_torque": 0.02}),
+          Case().updated({"web.tension": 30.0, "roller.speed": 5.0}),
+          Case().updated({"roller.speed": 8.0, "web.speed": 8.0, "web.acceleration": 2.0,
+                          "roller.inertia": 1e-3, "wrap.angle_deg": 120.0})]
+
+
+def _close(a, b, scale=None):
+    if isinstance(b, float) and not isinstance(b, bool):
+        return a == pytest.approx(b, rel=1e-12, abs=1e-12 * (scale or abs(b)))
+    return a == b
+
+
+def test_solve_many_answers_as_solve_does_case_by_case():
+    many = webfem.solve_many(VARIED, model="fitted")
+    assert len(many) == len(VARIED)
+    for case, m in zip(VARIED, many):
+        one = webfem.solve(case, model="fitted")
+        a, b = m.summary.to_dict(), one.summary.to_dict()
+        assert set(a) == set(b)
+        for k in a:
+            if k != "solve_time_s":
+                assert _close(a[k], b[k]), (k, a[k], b[k])
+        assert set(m.fields.keys()) == set(one.fields.keys())
+        for k in one.fields.keys():
+            ref = np.asarray(one.fields[k], float)
+            np.testing.assert_allclose(m.fields[k], ref, rtol=1e-12,
+                                       atol=1e-12 * np.abs(ref).max())
+    assert webfem.solve_many([], model="fitted") == []
+
+
+def test_solve_many_names_the_case_outside_the_domain():
+    with pytest.raises(fitted.OutsideDomain, match="case 1: no fitted answer: lam = "):
+        webfem.solve_many([Case(), Case().updated({"web.width": 0.002})], model="fitted")
+
+
+def test_vectorised_groups_and_traction_equal_the_per_case_ones():
+    from webfem.physics.effects import traction_summaries, traction_summary
+    G = fg.groups_of_columns(fg.case_columns(VARIED))
+    for case, row in zip(VARIED, G):
+        g = fg.groups_of(case)
+        np.testing.assert_allclose(row, [g[k] for k in fg.GROUPS], rtol=1e-13, atol=0)
+    mu, share = np.linspace(-1e-3, 0.3, len(VARIED)), np.linspace(0.0, 1.0, len(VARIED))
+    for case, m, s, many in zip(VARIED, mu, share, traction_summaries(VARIED, mu, share)):
+        one = traction_summary(case, float(m), float(s))
+        assert set(one) == set(many)
+        for k in one:
+            assert (many[k] is None) == (one[k] is None), k
+            if one[k] is not None:
+                assert many[k] == pytest.approx(one[k], rel=1e-13, abs=1e-300), k
+
+
+def test_the_read_out_is_the_physics_functions_on_the_profile():
+    """The array read-out against the physics functions called on each Case (as the FE
+    models' read-out does)."""
+    from webfem.physics.contact import contact_pressure
+    from webfem.physics.friction import friction_for
+    pr = fitted.predict(fg.groups_of_columns(fg.case_columns(VARIED)))
+    for i, case in enumerate(VARIED):
+        H, P = pr["H"][i], pr["P"][i]
+        v = fitted.read_profile(case, H, P, pr["H_min"][i], pr["s_min"][i])
+        h = H * case.h_scale
+        p = np.maximum(case.air.ambient_pressure + P * case.p_bar,
+                       0.1 * case.air.ambient_pressure)
+        dpdx = np.gradient(P, fg.NODES * case.beta) * case.p_bar / case.x_scale
+        loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
+        scale = np.abs(loc["mu"]).max()
+        assert v["mu"] == pytest.approx(np.sum(fg.WEIGHTS * loc["mu"]), rel=1e-12,
+                                        abs=1e-12 * scale)
+        for k in ("mu", "mu_f", "chi_c"):
+            np.testing.assert_allclose(v["loc"][k], loc[k], rtol=1e-12,
+                                       atol=1e-12 * np.abs(loc[k]).max())
+        w = case.web
+        Pc = contact_pressure(h, w.modulus_thickness, case.sigma, w.thickness) / case.p_bar
+        share = np.clip(np.sum(fg.WEIGHTS * Pc) / np.sum(fg.WEIGHTS * (P + Pc)), 0.0, 1.0)
+        assert v["contact_share"] == pytest.approx(share, rel=1e-12, abs=1e-15)
+        assert v["h_center"] == h[len(h) // 2]
+
+
+def test_the_blocked_shear_quadrature_is_the_same_sum():
+    from webfem.physics import roughness
+    h = np.random.default_rng(1).uniform(-2e-5, 5e-5, (200, 33))
+    whole = roughness._shear_factor(*np.broadcast_arrays(h, 4e-6, 1.3e-7), "exponential")
+    assert h.size > roughness._BLOCK
+    assert np.array_equal(roughness.shear_factor(h, 4e-6, 1.3e-7), whole)

@@ -38,10 +38,12 @@ import numpy as np
 
 from ..case import Case
 from ..fem.scaling import FoilParameters
+from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
            "baseline", "gap_to_fit", "fit_to_gap",
-           "outside", "physics_refusal", "group_array"]
+           "outside", "physics_refusal", "group_array", "case_columns", "groups_of_columns",
+           "COLUMNS"]
 
 #: The groups, in the order of the fit's coordinates.
 GROUPS = ("beta", "lam", "Kb", "d", "slip", "Dn", "c", "S")
@@ -122,18 +124,23 @@ def fit_to_gap(y, S, H_c):
     return H_c + S * (np.exp(y) - FLOOR_SIGMAS)
 
 
+#: The physics switches the campaign solved with (the defaults); any other is refused.
+FIT_PHYSICS = {"model.physics": "full", "air.slip": "first-order",
+               "air.roughness_flow": "mean-gap", "web.permeation": "isothermal",
+               "friction.distribution": "exponential", "friction.variant": "loads"}
+
+
 def physics_refusal(case: Case) -> str | None:
     """Why the fit does not apply to ``case``'s physics switches, or None. The campaign
     solved smooth rollers with the default full physics only."""
     if case.grooved:
         return ("grooved roller: the fit covers smooth rollers only (the periodic cell adds "
                 "pitch, land fraction and depth groups); use fe2d")
-    wanted = {"model.physics": (case.model.physics, "full"),
-              "air.slip": (case.air.slip, "first-order"),
-              "air.roughness_flow": (case.air.roughness_flow, "mean-gap"),
-              "web.permeation": (case.web.permeation, "isothermal"),
-              "friction.distribution": (case.friction.distribution, "exponential"),
-              "friction.variant": (case.friction.variant, "loads")}
+    wanted = {key: (value, FIT_PHYSICS[key]) for key, value in (
+        ("model.physics", case.model.physics), ("air.slip", case.air.slip),
+        ("air.roughness_flow", case.air.roughness_flow), ("web.permeation", case.web.permeation),
+        ("friction.distribution", case.friction.distribution),
+        ("friction.variant", case.friction.variant))}
     for key, (value, need) in wanted.items():
         if value != need:
             return (f"{key} = {value!r}: the fit was trained with {key} = {need!r} only; "
@@ -146,6 +153,39 @@ def groups_of(case: Case) -> dict[str, float]:
     prm = FoilParameters.from_case(case)
     return {"beta": prm.beta, "lam": case.lam, "Kb": prm.K * prm.beta, "d": prm.d,
             "slip": prm.slip, "Dn": prm.Dn, "c": prm.c, "S": prm.S}
+
+
+#: The numbers of a case the fitted model reads (:func:`case_columns`), each the Case's own
+#: attribute or property.
+COLUMNS = ("R", "T_eff", "eps", "U", "U_slide", "B", "L", "sigma", "h_scale", "x_scale", "D",
+           "p_bar", "k", "t", "E_b", "eta", "mfp", "p_a", "mu_cc", "C", "lam", "beta", "kappa",
+           "inertia")
+
+
+def case_columns(cases) -> dict[str, np.ndarray]:
+    """The :data:`COLUMNS` of many cases as arrays, one value per case (a few microseconds a
+    case: the model's vectorised read-out starts from these)."""
+    rows = [(c.roller.radius, c.tension_eff, c.eps, c.U, c.U_slide, c.B, c.web.width, c.sigma,
+             c.h_scale, c.x_scale, c.bending_used, c.p_bar, c.web.permeability,
+             c.web.thickness, c.web.modulus_thickness, c.air.viscosity, c.air.mean_free_path,
+             c.air.ambient_pressure, c.friction.mu_cc, c.friction.speed_constant, c.lam,
+             c.beta, c.kappa, c.web_inertia) for c in cases]
+    A = np.array(rows, float).reshape(-1, len(COLUMNS))
+    return {name: A[:, j] for j, name in enumerate(COLUMNS)}
+
+
+def groups_of_columns(v: dict[str, np.ndarray]) -> np.ndarray:
+    """:func:`groups_of` of many cases at once ((n, 8), :data:`GROUPS` order) from their
+    :func:`case_columns`: FoilParameters.from_case's formulas for a smooth roller with the
+    fit's physics (exponential heights, first-order slip), on arrays; equal to
+    :func:`groups_of` to rounding (tests/test_fitted.py)."""
+    R, T, eps, t = v["R"], v["T_eff"], v["eps"], v["t"]
+    beta = v["beta"]
+    K = 12.0 * v["k"] / (R * t * eps ** (4 / 3))
+    return np.column_stack([
+        beta, v["lam"], K * beta, v["p_bar"] / v["p_a"],
+        6.0 * SLIP_COEFFICIENT * v["mfp"] / v["h_scale"], v["D"] / (T * v["x_scale"] ** 2),
+        v["E_b"] * v["sigma"] * R / (2.0 * t * T), v["sigma"] / v["h_scale"]])
 
 
 def group_array(groups: dict[str, np.ndarray]) -> np.ndarray:
@@ -188,9 +228,12 @@ def outside(case: Case, g: dict[str, float] | None = None) -> str | None:
         return why
     g = groups_of(case) if g is None else g
     i = int(outside_rows(group_array(g))[0])
-    if i < 0:
-        return None
+    return None if i < 0 else outside_text(i, g[GROUPS[i]])
+
+
+def outside_text(i: int, value: float) -> str:
+    """The message for group number ``i`` (:data:`GROUPS`) at ``value``, outside its range."""
     name = GROUPS[i]
     lo, hi = DOMAIN[name]
-    return (f"{name} = {g[name]:.4g} is outside the fitted model's domain {lo:g} <= {name} "
+    return (f"{name} = {value:.4g} is outside the fitted model's domain {lo:g} <= {name} "
             f"<= {hi:g} (docs/fit.md lists the groups); use fe1d or fe2d")

@@ -18,12 +18,28 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property, lru_cache
 
 import numpy as np
 
 __all__ = ["Kernel", "matern52", "thin_plate", "KINDS"]
 
 _SQRT5 = np.sqrt(5.0)
+#: From this many points the kernel runs its matrix products on one BLAS thread: blocks of a
+#: few hundred points are too small to share, and on a loaded machine the threads' waiting
+#: cost several times the work (measured: 4e4 against 2e5 points/s; docs/fit.md, "Speed").
+ONE_THREAD_FROM = 64
+
+
+@lru_cache(maxsize=1)
+def _controller():
+    from threadpoolctl import ThreadpoolController
+    return ThreadpoolController()
+
+
+def _blas_one_thread():
+    """A context in which BLAS uses one thread (threadpoolctl, a dependency)."""
+    return _controller().limit(limits=1, user_api="blas")
 
 
 def matern52(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
@@ -59,8 +75,13 @@ class Kernel:
     y_std: np.ndarray
     kind: str = "matern52"
 
-    def __call__(self, x: np.ndarray, chunk: int = 4096) -> np.ndarray:
+    def __call__(self, x: np.ndarray, chunk: int = 512) -> np.ndarray:
         x = np.atleast_2d(np.asarray(x, float))
+        if self.kind == "matern52":
+            if len(x) < ONE_THREAD_FROM:
+                return self._matern52(x, chunk)
+            with _blas_one_thread():
+                return self._matern52(x, chunk)
         out = np.empty((len(x), self.weights.shape[1]))
         for i in range(0, len(x), chunk):     # bounded memory: chunk x centres at a time
             xi = x[i:i + chunk]
@@ -68,6 +89,43 @@ class Kernel:
             phi = KINDS[self.kind](xi, self.centres, self.scales)
             out[i:i + chunk] = base + phi @ self.weights
         return out * self.y_std + self.y_mean
+
+    @cached_property
+    def _prepared(self) -> tuple[np.ndarray, ...]:
+        """The constant parts of an evaluation: the scaled centres as -2 b^T and |b|^2, and
+        the weights and trend with the outputs' spread and mean folded in."""
+        b = self.centres / self.scales
+        trend = self.trend * self.y_std
+        trend[0] += self.y_mean
+        return (np.ascontiguousarray(-2.0 * b.T), np.sum(b * b, axis=1),
+                np.ascontiguousarray(self.weights * self.y_std), trend[0], trend[1:])
+
+    def _matern52(self, x: np.ndarray, chunk: int) -> np.ndarray:
+        """:func:`matern52` times the weights, in place on blocks of ``chunk`` points (the
+        block's kernel matrix stays in cache): the same sum as the generic path to rounding,
+        about three times faster."""
+        b2, bb, w, t0, t1 = self._prepared
+        out = np.empty((len(x), w.shape[1]))
+        for i in range(0, len(x), chunk):
+            a = x[i:i + chunk] / self.scales
+            r = a @ b2                                   # |a - b|^2 = |a|^2 - 2 a.b + |b|^2
+            r += np.einsum("ij,ij->i", a, a)[:, None]
+            r += bb
+            np.maximum(r, 0.0, out=r)
+            np.sqrt(r, out=r)
+            r *= _SQRT5
+            e = np.negative(r)
+            np.exp(e, out=e)
+            phi = r * (1.0 / 3.0)                        # (1 + r (1 + r/3)) e^-r
+            phi += 1.0
+            phi *= r
+            phi += 1.0
+            phi *= e
+            o = out[i:i + chunk]
+            np.matmul(phi, w, out=o)
+            o += t0
+            o += x[i:i + chunk] @ t1
+        return out
 
     def arrays(self, prefix: str) -> dict[str, np.ndarray]:
         """The coefficients as named arrays (for ``np.savez``)."""

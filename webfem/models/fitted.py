@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import time
 from functools import lru_cache
+from types import SimpleNamespace
 from pathlib import Path
 
 import numpy as np
@@ -33,14 +34,16 @@ import numpy as np
 from ..case import Case
 from ..errors import NoAdmissibleSolution
 from ..physics.contact import REGIMES, contact_gap, contact_pressure
-from ..physics.effects import included, traction_summary
+from ..physics.effects import included, traction_summaries
 from ..physics.friction import friction_for
-from ..result import Diagnostics, Fields, Result, Summary
+from ..result import Diagnostics, Fields, Result
+from ..summary import Summary
 from . import fit_groups as fg
 from .fit_kernel import Kernel
 from .options import FittedOptions
 
-__all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "OutsideDomain",
+__all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "read_profiles",
+           "OutsideDomain",
            "NAME",
            "COEFFICIENTS", "coefficients"]
 
@@ -90,76 +93,143 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
             "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region}
 
 
-def read_profile(case: Case, H, P, H_min, s_min) -> dict:
-    """Gaps, friction, regimes and contact share of one case from its scaled profile, with
-    the FE models' physics functions (readout.py does the same on the FE solution)."""
-    hs, xs, pb = case.h_scale, case.x_scale, case.p_bar
+def _stacked(v: dict[str, np.ndarray]) -> SimpleNamespace:
+    """Cases as (n, 1) columns under the names a :class:`Case` gives them, for the physics
+    functions (which broadcast): the fit's physics switches (:data:`fit_groups.FIT_PHYSICS`,
+    the only ones it answers for) on a smooth roller."""
+    c = {k: a[:, None] for k, a in v.items()}
+    ns, phys = SimpleNamespace, fg.FIT_PHYSICS
+    return ns(friction_variant=phys["friction.variant"], slip_model=phys["air.slip"],
+              roughness_flow_model=phys["air.roughness_flow"],
+              air=ns(ambient_pressure=c["p_a"], mean_free_path=c["mfp"], viscosity=c["eta"]),
+              friction=ns(distribution=phys["friction.distribution"], mu_cc=c["mu_cc"],
+                          speed_constant=c["C"]),
+              web=ns(modulus_thickness=c["E_b"], thickness=c["t"]),
+              roller=ns(groove_depth=0.0), land_fraction=1.0,
+              sigma=c["sigma"], p_bar=c["p_bar"], U_slide=c["U_slide"])
+
+
+def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.ndarray]:
+    """Gaps, friction, regimes and contact share of many cases (their
+    :func:`fit_groups.case_columns` ``v``) from their scaled profiles (rows of ``H``, ``P``),
+    with the FE models' physics functions evaluated on arrays (readout.py does the same on
+    the FE solution): one value per case (``regime`` as the index into REGIMES), and the gap
+    ``h`` and the local friction ``loc`` along the wrap, a row per case."""
+    case = _stacked(v)
+    hs, xs, pb, beta = (v[k][:, None] for k in ("h_scale", "x_scale", "p_bar", "beta"))
+    p_a = case.air.ambient_pressure
     h = H * hs
     # a fitted suction may overshoot below vacuum, where the slip length has no meaning
-    p = np.maximum(case.air.ambient_pressure + P * pb, 0.1 * case.air.ambient_pressure)
-    dpdx = np.gradient(P, fg.NODES * case.beta) * pb / xs
+    p = np.maximum(p_a + P * pb, 0.1 * p_a)
+    dpdx = np.gradient(P, fg.NODES, axis=1) / beta * pb / xs
     loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)
     W = fg.WEIGHTS
-    w = case.web
-    Pc = contact_pressure(h, w.modulus_thickness, case.sigma, w.thickness,
+    Pc = contact_pressure(h, case.web.modulus_thickness, case.sigma, case.web.thickness,
                           case.friction.distribution) / pb
     # a share of the load: a fitted suction may make the film's part nearly cancel contact's
-    share = float(np.clip(np.sum(W * Pc) / max(np.sum(W * (P + Pc)), 1e-300), 0.0, 1.0))
-    mu = float(np.sum(W * loc["mu"]))
-    shares = [float(np.sum(W * (loc["regime"] == k))) for k in range(3)]
+    share = np.clip(np.sum(W * Pc, axis=1) / np.maximum(np.sum(W * (P + Pc), axis=1), 1e-300),
+                    0.0, 1.0)
+    shares = np.stack([np.sum(W * (loc["regime"] == k), axis=1) for k in range(3)], axis=1)
     c = len(fg.NODES) // 2
-    return {"h_center": h[c], "h_inlet": h[0], "h_outlet": h[-1], "h_min": H_min * hs,
-            "x_min": s_min * case.beta * xs, "mu": mu, "contact_share": share,
-            "share_boundary": shares[0], "share_mixed": shares[1], "share_fluid": shares[2],
-            "regime": REGIMES[int(np.argmax(shares))], "h": h, "loc": loc,
-            "compression": max(0.0, -min(float(h.min()), H_min * hs))}
+    h_min = H_min * hs[:, 0]
+    return {"h_center": h[:, c], "h_inlet": h[:, 0], "h_outlet": h[:, -1], "h_min": h_min,
+            "x_min": s_min * beta[:, 0] * xs[:, 0], "mu": np.sum(W * loc["mu"], axis=1),
+            "contact_share": share, "share_boundary": shares[:, 0],
+            "share_mixed": shares[:, 1], "share_fluid": shares[:, 2],
+            "regime": np.argmax(shares, axis=1), "h": h, "loc": loc,
+            "compression": np.maximum(0.0, -np.minimum(h.min(axis=1), h_min))}
 
 
-def _summary(case: Case, values: dict, errors: np.ndarray, elapsed: float,
-             info: str) -> Summary:
-    s = {k: v for k, v in values.items() if k not in ("h", "loc")}
-    s.update(traction_summary(case, s["mu"], s["contact_share"]))
-    s.update(model=NAME, converged=True, iterations=0, n_dofs=0, residual=0.0,
-             solve_time_s=elapsed, sigma=case.sigma, U=case.U, U_slide=case.U_slide,
-             T_eff=case.tension_eff, bending_stiffness_used=case.bending_used,
-             effects=tuple(included(case)), eps=case.eps, kappa=case.kappa,
-             beta=case.beta, eq21_valid=bool(case.beta > 6 and case.lam > 7),
-             h_c=float(contact_gap(case.p_bar, case.web.modulus_thickness, case.sigma,
-                                   case.web.thickness, case.friction.distribution)),
-             resting=bool(s["compression"] > 0.0), method="fit", land_fraction=1.0,
-             error_basis=info, **{"lambda": case.lam},
-             **{f"error_{q}": float(e) for q, e in zip(QUANTITIES, errors)})
-    return Summary.from_mapping(s)
+def read_profile(case: Case, H, P, H_min, s_min) -> dict:
+    """:func:`read_profiles` of one case: its numbers, its regime's name, and ``h`` and
+    ``loc`` along the wrap."""
+    out = read_profiles(fg.case_columns([case]), np.atleast_2d(H), np.atleast_2d(P),
+                        np.atleast_1d(H_min), np.atleast_1d(s_min))
+    one = {k: a[0] for k, a in out.items() if k != "loc"}
+    one.update(regime=REGIMES[int(one["regime"])], loc={k: a[0] for k, a in out["loc"].items()})
+    return one
 
 
-def _checked_groups(case: Case) -> dict[str, float]:
-    """The groups of ``case``, or :class:`OutsideDomain` naming why it has none."""
-    why = fg.physics_refusal(case)
-    g = None if why else fg.groups_of(case)
-    why = why or fg.outside(case, g)
-    if why:
-        raise OutsideDomain(f"no fitted answer: {why}")
-    return g
+#: How the fitted model answers (the results' ``diagnostics.method``).
+METHOD = "fit of fe2d solutions (Matern-5/2 GP mean) + Eqs. 10-13, 28-31 on its profile"
+
+
+def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
+             options: FittedOptions) -> list[Result]:
+    """The results of ``cases`` (their columns ``v``, their predicted profiles ``pr``):
+    everything evaluated on arrays, then one summary and one set of fields (rows of the
+    arrays) per case; ``solve_time_s`` is left 0 for the caller."""
+    r = read_profiles(v, pr["H"], pr["P"], pr["H_min"], pr["s_min"])
+    traction = traction_summaries(cases, r["mu"], r["contact_share"])
+    errors = fit["errors"][pr["region"]]
+    lam, beta = v["lam"], v["beta"]
+    per_case = {k: r[k] for k in ("h_center", "h_inlet", "h_outlet", "h_min", "x_min",
+                                  "contact_share", "share_boundary", "share_mixed",
+                                  "share_fluid", "compression")}
+    per_case.update(
+        sigma=v["sigma"], U=v["U"], U_slide=v["U_slide"], T_eff=v["T_eff"],
+        bending_stiffness_used=v["D"], eps=v["eps"], kappa=v["kappa"], beta=beta,
+        lambda_=lam, eq21_valid=(beta > 6) & (lam > 7), resting=r["compression"] > 0.0,
+        h_c=contact_gap(v["p_bar"], v["E_b"], v["sigma"], v["t"],
+                        fg.FIT_PHYSICS["friction.distribution"]),
+        **{f"error_{q}": errors[:, j] for j, q in enumerate(QUANTITIES)})
+    names = list(per_case)
+    columns = [np.asarray(per_case[k]).tolist() for k in names]
+    regimes = [REGIMES[k] for k in r["regime"].tolist()]
+    basis = [_basis(fit, k) for k in range(len(fit["errors"]))]
+    fixed = dict(model=NAME, converged=True, iterations=0, n_dofs=0, residual=0.0,
+                 solve_time_s=0.0, method="fit", land_fraction=1.0)
+    diagnostics = Diagnostics(method=METHOD, options=options)
+    x = fg.NODES[None, :] * beta[:, None] * v["x_scale"][:, None]
+    h, loc = r["h"], r["loc"]
+    out = []
+    for i, (case, row, tr, regime, region) in enumerate(zip(
+            cases, zip(*columns), traction, regimes, pr["region"].tolist())):
+        summary = Summary(**dict(zip(names, row)), **tr, **fixed, regime=regime,
+                          effects=included(case), error_basis=basis[region])
+        fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
+                        mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])
+        out.append(Result(case, summary, fields, diagnostics))
+    return out
+
+
+def _checked_columns(cases: list[Case], many: bool) -> tuple[dict, np.ndarray]:
+    """The columns and groups of ``cases``, or :class:`OutsideDomain` naming the first case
+    outside the domain (its number when ``many``), the group and its range."""
+    def refuse(i, why):
+        raise OutsideDomain((f"case {i}: " if many else "") + f"no fitted answer: {why}")
+    for i, c in enumerate(cases):
+        why = fg.physics_refusal(c)
+        if why:
+            refuse(i, why)
+    v = fg.case_columns(cases)
+    G = fg.groups_of_columns(v)
+    bad = fg.outside_rows(G)
+    if (bad >= 0).any():
+        i = int(np.argmax(bad >= 0))
+        refuse(i, fg.outside_text(int(bad[i]), G[i, bad[i]]))
+    return v, G
+
+
+def _timed(results: list[Result], seconds: float) -> list[Result]:
+    """``results`` with their ``solve_time_s`` set (their summaries are new, not yet seen
+    by anyone: set in place rather than copied, which would cost as much as making them)."""
+    for r in results:
+        object.__setattr__(r.summary, "solve_time_s", seconds)
+    return results
 
 
 def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = None,
                raise_on_failure: bool = True) -> Result:
-    """The fitted answer for one case, with its gap and friction along the wrap as fields.
-    Outside the domain it raises :class:`OutsideDomain` (``raise_on_failure`` is accepted
-    for the registry's common signature; a refusal is never returned as an answer)."""
+    """The fitted answer for one case, with its gap and friction along the wrap as fields
+    (:func:`solve_many` of one case). Outside the domain it raises :class:`OutsideDomain`
+    (``raise_on_failure`` is accepted for the registry's common signature; a refusal is
+    never returned as an answer)."""
     t0 = time.perf_counter()
-    g = _checked_groups(case)
+    v, G = _checked_columns([case], many=False)
     fit = coefficients(options.coefficients)
-    pr = predict(fg.group_array(g), fit)
-    values = read_profile(case, pr["H"][0], pr["P"][0], pr["H_min"][0], pr["s_min"][0])
-    elapsed = time.perf_counter() - t0
-    summary = _summary(case, values, fit["errors"][pr["region"][0]], elapsed,
-                       _basis(fit, pr["region"][0]))
-    x = fg.NODES * case.beta * case.x_scale
-    fields = Fields(x=x, h=values["h"], **values["loc"])
-    return Result(case, summary, fields, Diagnostics(method="fit of fe2d solutions "
-                                                     "(Matern-5/2 GP mean) + Eqs. 10-13, "
-                                                     "28-31 on its profile", options=options))
+    res = _results([case], v, predict(G, fit), fit, options)
+    return _timed(res, time.perf_counter() - t0)[0]
 
 
 _REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
@@ -180,25 +250,16 @@ def solve(case: Case, options: FittedOptions | None = None, **values) -> Result:
 
 
 def solve_many(cases, options: FittedOptions | None = None) -> list[Result]:
-    """Many cases in one vectorised evaluation of the fit (summaries and the wrap profile).
-    A case outside the domain is an :class:`OutsideDomain` error naming it."""
+    """Many cases in one vectorised evaluation: the fit, the friction read-out and the
+    traction on arrays, then one result per case, each the same as :func:`solve_case`'s
+    (``solve_time_s``: the batch's time per case). A case outside the domain is an
+    :class:`OutsideDomain` error naming it."""
     cases = list(cases)
+    if not cases:
+        return []
     options = options or FittedOptions()
     t0 = time.perf_counter()
-    groups = []
-    for i, c in enumerate(cases):
-        try:
-            groups.append(_checked_groups(c))
-        except OutsideDomain as err:
-            raise OutsideDomain(f"case {i}: {err}") from None
+    v, G = _checked_columns(cases, many=True)
     fit = coefficients(options.coefficients)
-    G = np.vstack([fg.group_array(g) for g in groups])
-    pr = predict(G, fit)
-    elapsed = (time.perf_counter() - t0) / max(len(cases), 1)
-    out = []
-    for i, c in enumerate(cases):
-        v = read_profile(c, pr["H"][i], pr["P"][i], pr["H_min"][i], pr["s_min"][i])
-        s = _summary(c, v, fit["errors"][pr["region"][i]], elapsed,
-                     _basis(fit, pr["region"][i]))
-        out.append(Result(c, s, Fields(x=fg.NODES * c.beta * c.x_scale, h=v["h"])))
-    return out
+    res = _results(cases, v, predict(G, fit), fit, options)
+    return _timed(res, (time.perf_counter() - t0) / len(cases))

@@ -31,10 +31,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .friction import delta_T_from_mu
 
 __all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
-           "idler_check", "traction_summary"]
+           "idler_check", "idler_torque", "traction_summary", "traction_summaries"]
 
 #: Every effect, in the order tables list them.
 EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction",
@@ -86,7 +88,7 @@ def idler_check(case, mu_onset: float) -> dict:
     (10.39, 2.2)
     """
     R, L = case.roller.radius, case.web.width
-    torque = case.roller.drag_torque + case.roller.inertia * abs(case.web.acceleration) / R
+    torque = idler_torque(case)
     if torque <= 0.0:
         return dict(delta_T_required=None, delta_T_available=None, slip_margin=None,
                     mu_onset=None)
@@ -94,6 +96,13 @@ def idler_check(case, mu_onset: float) -> dict:
     available = case.tension_eff * math.expm1(mu_onset * case.B)
     return dict(delta_T_required=required, delta_T_available=available,
                 slip_margin=available / required, mu_onset=mu_onset)
+
+
+def idler_torque(case) -> float:
+    """The torque an idler must be driven with, M_d + J |a| / R [N m]: the bearing and seal
+    drag and the roller's angular acceleration (:func:`idler_check`)."""
+    r = case.roller
+    return r.drag_torque + r.inertia * abs(case.web.acceleration) / r.radius
 
 
 def traction_summary(case, mu: float, contact_share: float) -> dict:
@@ -143,3 +152,42 @@ def traction_summary(case, mu: float, contact_share: float) -> dict:
     available = T * math.expm1(mu_onset * B)
     idler.update(mu_onset=mu_onset, delta_T_available=available)
     return dict(mu=mu_onset, delta_T=available, mu_film=mu, delta_T_film=delta_T, **idler)
+
+
+_IDLER_KEYS = ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")
+
+
+def traction_summaries(cases, mu, contact_share) -> list[dict]:
+    """:func:`traction_summary` of many cases at once: the same numbers (to rounding), with
+    the belt formula's exponentials evaluated on arrays (``mu`` and ``contact_share``: one
+    value per case). For the vectorised models (:func:`webfem.models.fitted.solve_many`).
+
+    >>> from webfem import Case
+    >>> cases = [Case(), Case().updated({"roller.speed": 10.0, "web.speed": 10.0})]
+    >>> many = traction_summaries(cases, [0.137, -2e-4], [0.9, 0.5])
+    >>> [round(many[i]["delta_T"] - traction_summary(c, m, s)["delta_T"], 12)
+    ...  for i, (c, m, s) in enumerate(zip(cases, [0.137, -2e-4], [0.9, 0.5]))]
+    [0.0, 0.0]
+    """
+    rows = np.array([(c.tension_eff, c.B, c.friction.mu_cc, c.U_slide, idler_torque(c),
+                      c.roller.radius, c.web.width) for c in cases], float).reshape(-1, 7)
+    T, B, mu_cc, U_s, torque, R, L = rows.T
+    mu = np.asarray(mu, float)
+    mu_onset = mu_cc * np.asarray(contact_share, float)
+    delta_T = delta_T_from_mu(mu, T, B)
+    available = T * np.expm1(mu_onset * B)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        required = torque / (R * L)
+        margin = available / required
+    cols = [v.tolist() for v in (mu, delta_T, mu_onset, available, required, margin, U_s,
+                                 torque)]
+    out = []
+    for m, dT, onset, avail, req, marg, us, tq in zip(*cols):
+        idler = (dict(delta_T_required=req, delta_T_available=avail, slip_margin=marg,
+                      mu_onset=onset) if tq > 0.0 else dict.fromkeys(_IDLER_KEYS))
+        if us != 0.0:
+            out.append(dict(mu=m, delta_T=dT, mu_film=None, delta_T_film=None, **idler))
+        else:
+            idler.update(mu_onset=onset, delta_T_available=avail)
+            out.append(dict(mu=onset, delta_T=avail, mu_film=m, delta_T_film=dT, **idler))
+    return out

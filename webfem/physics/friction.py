@@ -126,11 +126,12 @@ def load_friction(h, p_c, *, p_bar, U_s, eta, mu_cc, C, h_edge, sigma, slip_leng
             tau_f = np.where(h + slip_length > 0.0,
                              eta * U_s / np.where(h + slip_length > 0.0, h + slip_length, 1.0),
                              np.inf)
-            groove = eta * U_s / (h + groove_depth + slip_length)
         else:
             tau_f = eta * U_s * shear_factor(h, sigma, slip_length, roughness)
-            groove = eta * U_s * shear_factor(h + groove_depth, sigma, slip_length, roughness)
-        if land < 1.0:
+        if land < 1.0:      # the grooves' part (computed only where there are grooves)
+            groove = (eta * U_s / (h + groove_depth + slip_length) if roughness is None else
+                      eta * U_s * shear_factor(h + groove_depth, sigma, slip_length,
+                                               roughness))
             tau_f = land * tau_f + (1.0 - land) * groove
         tau_f = tau_f + shear_p
     mu_f = tau_f / p_bar

@@ -91,6 +91,8 @@ _NODES = np.polynomial.legendre.leggauss(40)
 #: The heights beyond which the densities are negligible, in units of sigma (exp(-40) and
 #: exp(-12.5^2 / 2) of the peak).
 _REACH = {"exponential": 40.0, "gaussian": 12.5}
+#: Gaps per block of :func:`shear_factor`'s quadrature (its arrays then fit in cache).
+_BLOCK = 2048
 
 
 def shear_factor(h, sigma, slip_length, distribution: str = "exponential"):
@@ -103,6 +105,19 @@ def shear_factor(h, sigma, slip_length, distribution: str = "exponential"):
     _check(distribution)
     h, sigma, ell = np.broadcast_arrays(*(np.asarray(v, float) for v in
                                           (h, sigma, slip_length)))
+    if h.size <= _BLOCK:
+        return _shear_factor(h, sigma, ell, distribution)
+    # in blocks of gaps, so the quadrature's arrays stay in cache (each gap's sum is the same)
+    shape = h.shape
+    h, sigma, ell = (np.ravel(v) for v in (h, sigma, ell))
+    out = np.empty(h.shape)
+    for i in range(0, h.size, _BLOCK):
+        out[i:i + _BLOCK] = _shear_factor(h[i:i + _BLOCK], sigma[i:i + _BLOCK],
+                                          ell[i:i + _BLOCK], distribution)
+    return out.reshape(shape)
+
+
+def _shear_factor(h, sigma, ell, distribution):
     reach = _REACH[distribution] * sigma
     g, w = _NODES
     total = np.zeros(h.shape)
