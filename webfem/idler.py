@@ -14,6 +14,8 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,7 +48,9 @@ class MarginCurve:
                "converged", "model_used")
 
     def to_dict(self) -> dict:
-        return dict(self.__dict__)
+        """The fields, JSON-safe (a speed without an answer has None for its numbers)."""
+        from .summary import plain
+        return {k: plain(v) for k, v in self.__dict__.items()}
 
     def rows(self) -> list[dict]:
         """One row per line speed, keyed by :attr:`COLUMNS` (``speed`` [m/s] is the line
@@ -90,10 +94,24 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
                          "roller.inertia [kg m^2] with web.acceleration [m/s^2]")
     speeds = [float(u) for u in speeds]
     cases = [case.updated({"roller.speed": u, "web.speed": u}) for u in speeds]
-    results = list(solve_along(cases, model, options, **values))
-    pick = {k: tuple(float(r[k]) for r in results) for k in
-            ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")}
-    used = tuple(r.summary.model_used or r["model"] for r in results)
+    keys = ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")
+    if model == "fitted":
+        # its domain moves with the speed: a speed outside it has no answer (NaN), the
+        # others come from one vectorised evaluation
+        from .models import fit_groups as fg
+        from .models.fitted import solve_many
+        from .models.registry import make_options
+        opts = make_options(model, options, **values)
+        inside = [fg.outside(c) is None for c in cases]
+        answered = iter(solve_many([c for c, ok in zip(cases, inside) if ok], opts))
+        results = [next(answered) if ok else None for ok in inside]
+    else:
+        results = list(solve_along(cases, model, options, **values))
+    pick = {k: tuple(float(r[k]) if r is not None else math.nan for r in results)
+            for k in keys}
+    used = tuple((r.summary.model_used or r["model"]) if r is not None else model
+                 for r in results)
     return MarginCurve(model, tuple(speeds),
-                       converged=tuple(bool(r["converged"]) for r in results),
+                       converged=tuple(r is not None and bool(r["converged"])
+                                       for r in results),
                        models_used=used, **pick)

@@ -30,6 +30,7 @@ from .models.options import Options
 from .models.registry import make_options, model_spec
 
 __all__ = ["TractionLoss", "traction_loss_speed", "traction_loss_table", "mu_curve",
+           "fitted_speed_range",
            "CHART_PARAMETERS", "SPEED_RANGE", "CHART_POINTS"]
 
 #: Roller speeds [m/s] a traction-loss scan spans unless told otherwise.
@@ -193,6 +194,13 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
 
     check_workers(workers)
     opts = make_options(model, options, **values)
+    note = ""
+    if model == "fitted":       # scan the speeds its domain holds (it refuses the others)
+        lo_in, hi_in = fitted_speed_range(case, max(lo, 1e-3), hi)
+        if (lo_in, hi_in) != (max(lo, 1e-3), hi):
+            note = (f" (the fitted model's domain limits the scan to {lo_in:.4g}..{hi_in:.4g}"
+                    " m/s)")
+        lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
     results = _scan(case, speeds, model, opts, workers=workers)
     mu = np.array([r["mu"] for r in results], float)
@@ -204,10 +212,10 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
             f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
-            f"{mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s)"))
+            f"{mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s){note}"))
     after = np.nonzero(mu[i_peak:] < mu_min)[0]
     if after.size == 0:
-        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s")
+        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s{note}")
     j = i_peak + int(after[0])
     a, b = float(speeds[j - 1]), float(speeds[j])
     cache = {a: results[j - 1]}
@@ -223,7 +231,51 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     at = cache[min(cache, key=lambda v: abs(v - speed))]
     used += [m for m in dict.fromkeys(_used(r) for r in cache.values()) if m not in used]
     found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))
-    return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s")
+    return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s"
+                                      f"{note}")
+
+
+def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[float, float]:
+    """The roller speeds of ``lo..hi`` [m/s] the fitted model answers at: the longest run of
+    a logarithmic grid of ``n`` speeds inside its domain (its groups move with the speed;
+    a speed where the case itself is impossible counts as outside). Raises
+    :class:`~webfem.models.fitted.OutsideDomain` naming why when no speed is inside.
+
+    >>> lo, hi = fitted_speed_range(Case(), 0.5, 100.0)
+    >>> 0.5 < lo < 2.0, hi == 100.0
+    (True, True)
+    """
+    from .models import fit_groups as fg
+    from .models.fitted import OutsideDomain
+
+    why = fg.physics_refusal(case)
+    if why:
+        raise OutsideDomain(f"no fitted answer: {why}")
+    grid = np.geomspace(lo, hi, n)
+    cases, where = [], []
+    for j, u in enumerate(grid):
+        try:
+            cases.append(case.updated({"roller.speed": float(u)}))
+            where.append(j)
+        except InputError:
+            pass
+    inside = np.zeros(n, bool)
+    if cases:
+        rows = fg.outside_rows(fg.groups_of_columns(fg.case_columns(cases)))
+        inside[np.array(where)[rows < 0]] = True
+    best, start = (0, 0), None
+    for j, ok in enumerate(np.append(inside, False)):
+        if ok and start is None:
+            start = j
+        elif not ok and start is not None:
+            best = max(best, (j - start, start))
+            start = None
+    length, first = best
+    if length == 0:
+        probe = fg.outside(cases[0]) if cases else "no possible case"
+        raise OutsideDomain(f"no fitted answer at any roller speed in {lo:g}..{hi:g} m/s "
+                            f"(at {grid[where[0]] if cases else lo:g} m/s: {probe})")
+    return float(grid[first]), float(grid[first + length - 1])
 
 
 def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = None
@@ -237,6 +289,14 @@ def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = No
     """
     speeds = np.asarray(speeds, float)
     cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    if model == "fitted":       # outside its domain (which moves with the speed): NaN
+        from .models import fit_groups as fg
+        from .models.fitted import solve_many
+        inside = np.array([fg.outside(c) is None for c in cases], bool)
+        mu = np.full(len(cases), np.nan)
+        mu[inside] = [r["mu"] for r in solve_many(
+            [c for c, ok in zip(cases, inside) if ok], make_options(model, options))]
+        return speeds, mu
     mu = [r["mu"] if r["converged"] else np.nan
           for r in solve_along(cases, model, make_options(model, options))]
     return speeds, np.array(mu, float)

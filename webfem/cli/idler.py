@@ -73,14 +73,15 @@ def _table(curve, units: str) -> str:
               f"{'verdict':<7}" + ("  model" if mixed else "")).rstrip(),
              f"  {f'[{speed}]':>10} {f'[{tension}]':>10} {f'[{tension}]':>10} {'[-]':>9}"]
     used = curve.models_used or (curve.model,) * len(curve.speeds)
-    for u, r, a, m, name in zip(curve.speeds, curve.delta_T_required, curve.delta_T_available,
-                                curve.slip_margin, used):
+    for u, r, a, m, name, ok in zip(curve.speeds, curve.delta_T_required,
+                                    curve.delta_T_available, curve.slip_margin, used,
+                                    curve.converged):
         u, r, a = (convert(u, "speed", units), convert(r, "tension", units),
                    convert(a, "tension", units))
         # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
         su, st = (3, 3) if units == "si" else (4, 3 if units == "metric" else 4)
         lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g}  "
-                      f"{'holds' if m >= 1 else 'SLIPS':<7}"
+                      f"{('holds' if m >= 1 else 'SLIPS') if ok else 'no answer':<7}"
                       + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     lines.append("  the idler holds over the whole range" if slip is None

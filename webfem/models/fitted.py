@@ -114,7 +114,8 @@ def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.
     :func:`fit_groups.case_columns` ``v``) from their scaled profiles (rows of ``H``, ``P``),
     with the FE models' physics functions evaluated on arrays (readout.py does the same on
     the FE solution): one value per case (``regime`` as the index into REGIMES), and the gap
-    ``h`` and the local friction ``loc`` along the wrap, a row per case."""
+    ``h``, the local friction ``loc``, the absolute pressure ``p`` and its gradient ``dpdx``
+    along the wrap, a row per case."""
     case = _stacked(v)
     hs, xs, pb, beta = (v[k][:, None] for k in ("h_scale", "x_scale", "p_bar", "beta"))
     p_a = case.air.ambient_pressure
@@ -136,7 +137,7 @@ def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.
             "x_min": s_min * beta[:, 0] * xs[:, 0], "mu": np.sum(W * loc["mu"], axis=1),
             "contact_share": share, "share_boundary": shares[:, 0],
             "share_mixed": shares[:, 1], "share_fluid": shares[:, 2],
-            "regime": np.argmax(shares, axis=1), "h": h, "loc": loc,
+            "regime": np.argmax(shares, axis=1), "h": h, "loc": loc, "p": p, "dpdx": dpdx,
             "compression": np.maximum(0.0, -np.minimum(h.min(axis=1), h_min))}
 
 
@@ -179,7 +180,6 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     basis = [_basis(fit, k) for k in range(len(fit["errors"]))]
     fixed = dict(model=NAME, converged=True, iterations=0, n_dofs=0, residual=0.0,
                  solve_time_s=0.0, method="fit", land_fraction=1.0)
-    diagnostics = Diagnostics(method=METHOD, options=options)
     x = fg.NODES[None, :] * beta[:, None] * v["x_scale"][:, None]
     h, loc = r["h"], r["loc"]
     out = []
@@ -189,6 +189,11 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
                           effects=included(case), error_basis=basis[region])
         fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
                         mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])
+        # the wrap quadrature, as the FE models give it: calibration re-evaluates the
+        # friction there with other constants (webfem.calibrate)
+        diagnostics = Diagnostics(method=METHOD, options=options, wrap_h=h[i],
+                                  wrap_w=fg.WEIGHTS, wrap_p=r["p"][i],
+                                  wrap_dpdx=r["dpdx"][i])
         out.append(Result(case, summary, fields, diagnostics))
     return out
 
