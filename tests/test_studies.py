@@ -188,3 +188,18 @@ def test_study_cli_out_is_a_file(tmp_path, capsys):
     assert main(["study", "stability", "cases/base.toml", "--out", str(target)]) == 2
     err = capsys.readouterr().err
     assert "--out" in err and "is a file" in err and "Traceback" not in err
+
+
+def test_pareto_has_the_fitted_models_point(par):
+    r = par.row("fitted")
+    assert r["model"] == "fitted" and r["same_case"]
+    assert r["time_s"] < par.row("fe1d P2 level 0")["time_s"]
+
+
+def test_pareto_measures_the_fitted_model_on_the_default_physics_where_it_refuses_the_case():
+    from conftest import PAPER
+    on, name = pareto._fitted_case(PAPER, "fitted")
+    assert name == "fitted (default physics)" and on.model.physics == "full"
+    assert on.updated({"model.physics": "paper"}) == PAPER
+    on, why = pareto._fitted_case(PAPER.updated({"web.width": 0.002}), "fitted")
+    assert on is None and "model.physics" in why

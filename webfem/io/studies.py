@@ -60,6 +60,11 @@ def pareto_markdown(study) -> str:
         lines.append(f"| {r['method']} | {r['time_s'] * 1e3:.2f} | {r['iterations']} | "
                      f"{r['error_h_center']:.1e} | {r['error_h_min']:.1e} | "
                      f"{r['error_mu']:.1e} | {'yes' if r['pareto_mu'] else ''} |")
+    if any(not r.get("same_case", True) for r in study.rows):
+        lines += ["", "fitted (default physics): the fitted model was trained on the default "
+                  "physics only and refuses this case's; its row is the same case with the "
+                  "default physics, against fe2d Q2 level "
+                  f"{study.reference_level} of that case, and is left off the front."]
     return "\n".join(lines) + "\n"
 
 
@@ -130,6 +135,13 @@ def report_markdown(report, source: str = "the case") -> str:
     cf = next(r for r in par.rows if r["model"] == "closed-form")
     front = [r["method"] for r in par.rows if r["pareto_mu"]]
     q2_default = min(r["error_mu"] for r in par.rows if r["method"] == "fe2d Q2 level 0")
+    fit = next((r for r in par.rows if r["model"] == "fitted"), None)
+    fitted_text = "" if fit is None else (
+        f" The fitted model (`{fit['method']}`) costs {fit['time_s'] * 1e6:.0f} us and misses "
+        f"mu by {fit['error_mu'] * 100:.0f} %"
+        + ("" if fit.get("same_case", True) else
+           " (the same case with the default physics, against its own finest 2-D solution: "
+           "the fit was trained on that physics only)") + ".")
     count = st.count
     command = (f"webfem study report {source} --quick" if report.quick else "make studies")
     return f"""# Studies: convergence, speed against accuracy, stability
@@ -154,7 +166,7 @@ mark Eq. 21's stated range (lambda > 7, beta > 6). {convergence_markdown(conv).s
 ![pareto](pareto.png)
 
 The closed form costs {cf['time_s'] * 1e6:.0f} us and misses mu by {cf['error_mu'] * 100:.0f} %
-against the finest 2-D solution; the Pareto front for mu is: {', '.join(front)}. What the
+against the finest 2-D solution; the Pareto front for mu is: {', '.join(front)}.{fitted_text} What the
 extra time buys is in the table: the 1-D model is fast but carries the edge-leakage error
 (about 1.5/lambda in the gap), the 2-D model's default mesh is already within
 {q2_default:.0e} in mu.

@@ -70,7 +70,7 @@ def pareto_chart(study, path) -> Path:
     """Time per solve against the relative errors (log-log), the mu Pareto front filled."""
     rows = study.rows
     fig, ax = plt.subplots(figsize=(8, 5.5), constrained_layout=True)
-    markers = {"closed-form": "s", "fe1d": "o", "fe2d": "^"}
+    markers = {"closed-form": "s", "fitted": "D", "fe1d": "o", "fe2d": "^"}
     for q, colour in (("mu", "C0"), ("h_center", "C1"), ("h_min", "C2")):
         for r in rows:
             ax.loglog(r["time_s"], max(r[f"error_{q}"], 1e-12), markers[r["model"]],
@@ -80,16 +80,59 @@ def pareto_chart(study, path) -> Path:
     front = sorted((r for r in rows if r["pareto_mu"]), key=lambda r: r["time_s"])
     ax.loglog([r["time_s"] for r in front], [max(r["error_mu"], 1e-12) for r in front], "-",
               color="C0", lw=1, label="Pareto front (mu), filled")
-    for r in rows:
-        ax.annotate(r["method"], (r["time_s"], max(r["error_mu"], 1e-12)), fontsize=6,
-                    xytext=(4, 2), textcoords="offset points")
     ax.set_xlabel("time per solve [s] (median)")
     ax.set_ylabel("relative error against the finest 2-D solution")
     ax.set_title(f"speed against accuracy, U_r = {study.case.roller.speed:g} m/s "
-                 "(squares: closed form, circles: 1-D, triangles: 2-D)", fontsize=9)
+                 "(squares: closed form, diamonds: fitted, circles: 1-D, triangles: 2-D)",
+                 fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
+    _label_points(fig, ax, [(r["method"], r["time_s"], max(r["error_mu"], 1e-12))
+                            for r in rows])
     return _save(fig, path)
+
+
+def _label_points(fig, ax, labels) -> None:
+    """Name each point (text, x, y) beside it, to its right (to its left near the right
+    edge); where that label would cover another label or point (methods of similar time
+    and error cluster) it moves up or down in steps, inside the axes, with a thin line to
+    its point."""
+    from matplotlib.text import Text
+    from matplotlib.transforms import Bbox
+    fig.canvas.draw()                  # the layout first: the labels then leave it alone
+    fig.set_layout_engine("none")
+    renderer = fig.canvas.get_renderer()
+    edge = ax.get_window_extent(renderer)
+    points = ax.transData.transform(np.array([(x, y) for _, x, y in labels], float))
+    placed = [Bbox.from_bounds(px - 5, py - 5, 10, 10) for px, py in points]
+
+    def put(text, x, y, dx, dy):
+        far = dy != 2
+        t = ax.annotate(text, (x, y), fontsize=6, xytext=(dx, dy), textcoords="offset points",
+                        ha="left" if dx > 0 else "right", va="center" if far else "baseline",
+                        arrowprops=dict(arrowstyle="-", lw=0.4, color="0.5",
+                                        shrinkA=0, shrinkB=4) if far else None)
+        # the text's own box (an annotation's box takes in its line too)
+        t.update_positions(renderer)
+        return t, Text.get_window_extent(t, renderer).padded(2)
+
+    for i, (text, x, y) in sorted(enumerate(labels), key=lambda t: (t[1][1], -t[1][2])):
+        own = placed[i]
+        others = [b for b in placed if b is not own]
+        for dy in (2, 12, -12, 22, -22, 32, -32, 42, -42, 52, -52, 62, -62):
+            for dx in (6, -6):
+                t, box = put(text, x, y, dx, dy)
+                inside = edge.x0 <= box.x0 and box.x1 <= edge.x1 and \
+                    edge.y0 <= box.y0 and box.y1 <= edge.y1
+                if inside and not any(box.overlaps(o) for o in others):
+                    break
+                t.remove()
+            else:
+                continue
+            break
+        else:
+            t, box = put(text, x, y, 6, 2)
+        placed.append(box)
 
 
 def stability_chart(study, path) -> Path:
