@@ -129,9 +129,11 @@ def test_stated_errors_bound_the_true_error_on_fresh_points():
 # -- the vectorised evaluation (solve_many) --------------------------------------------------
 
 #: Cases inside the domain that exercise every branch of the read-out: sliding and not (an
-#: idler), a moving web (inertia), an idler load, a permeable web, a resting web.
+#: idler), a moving web (inertia), an idler load, permeable webs and an impermeable one, a
+#: resting web.
 VARIED = [Case(), Case().updated({"roller.speed": 10.0, "web.speed": 10.0}),
           Case().updated({"web.permeability": 1e-14, "roller.speed": 40.0}),
+          Case().updated({"web.permeability": 0.0, "roller.speed": 30.0}),
           Case().updated({"web.speed": 15.0, "roller.drag_torque": 0.02}),
           Case().updated({"web.tension": 30.0, "roller.speed": 5.0}),
           Case().updated({"roller.speed": 8.0, "web.speed": 8.0, "web.acceleration": 2.0,

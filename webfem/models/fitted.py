@@ -180,13 +180,21 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     basis = [_basis(fit, k) for k in range(len(fit["errors"]))]
     fixed = dict(model=NAME, converged=True, iterations=0, n_dofs=0, residual=0.0,
                  solve_time_s=0.0, method="fit", land_fraction=1.0)
+    # the effects included: with the fit's physics switches fixed, they vary only with
+    # whether the web moves, bends and breathes, so ask once per combination
+    kinds = list(zip((v["inertia"] > 0).tolist(), (v["D"] > 0).tolist(),
+                     (v["k"] > 0).tolist()))
+    first = {}
+    for i, kind in enumerate(kinds):
+        first.setdefault(kind, i)
+    effects = {kind: included(cases[i]) for kind, i in first.items()}
     x = fg.NODES[None, :] * beta[:, None] * v["x_scale"][:, None]
     h, loc = r["h"], r["loc"]
     out = []
-    for i, (case, row, tr, regime, region) in enumerate(zip(
-            cases, zip(*columns), traction, regimes, pr["region"].tolist())):
+    for i, (case, row, tr, regime, region, kind) in enumerate(zip(
+            cases, zip(*columns), traction, regimes, pr["region"].tolist(), kinds)):
         summary = Summary(**dict(zip(names, row)), **tr, **fixed, regime=regime,
-                          effects=included(case), error_basis=basis[region])
+                          effects=effects[kind], error_basis=basis[region])
         fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
                         mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])
         # the wrap quadrature, as the FE models give it: calibration re-evaluates the
