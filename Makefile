@@ -47,6 +47,7 @@ bench: $(STAMP)
 	$(PY) benchmarks/bench_sweeps.py
 	$(PY) benchmarks/bench_speed.py
 	$(PY) benchmarks/bench_calibration.py
+	$(PY) benchmarks/bench_fitted.py speed
 	$(PY) benchmarks/bench_figures.py
 
 # auto across 200 random operating points of real lines (issue 22's targets; about 7 minutes
