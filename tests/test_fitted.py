@@ -218,3 +218,19 @@ def test_the_blocked_shear_quadrature_is_the_same_sum():
     whole = roughness._shear_factor(*np.broadcast_arrays(h, 4e-6, 1.3e-7), "exponential")
     assert h.size > roughness._BLOCK
     assert np.array_equal(roughness.shear_factor(h, 4e-6, 1.3e-7), whole)
+
+
+def test_the_blocked_kernel_is_the_generic_formula():
+    from webfem.models.fit_kernel import Kernel, matern52
+    rng = np.random.default_rng(3)
+    c, x = rng.uniform(size=(40, 3)), rng.uniform(size=(700, 3))
+    k = Kernel(centres=c, scales=np.array([0.3, 0.7, 1.1]), trend=rng.normal(size=(4, 5)),
+               weights=rng.normal(size=(40, 5)), y_mean=rng.normal(size=5),
+               y_std=rng.uniform(0.5, 2.0, 5))
+    generic = ((np.hstack([np.ones((len(x), 1)), x]) @ k.trend
+                + matern52(x, c, k.scales) @ k.weights) * k.y_std + k.y_mean)
+    np.testing.assert_allclose(k(x), generic, rtol=1e-12, atol=1e-12)       # many points
+    np.testing.assert_allclose(k(x[:5]), generic[:5], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(k(c), (np.hstack([np.ones((40, 1)), c]) @ k.trend
+                                      + matern52(c, c, k.scales) @ k.weights) * k.y_std
+                               + k.y_mean, rtol=1e-9, atol=1e-9)   # at the centres (r = 0)

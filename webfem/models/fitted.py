@@ -26,8 +26,8 @@ from __future__ import annotations
 
 import time
 from functools import lru_cache
-from types import SimpleNamespace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
