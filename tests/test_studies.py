@@ -64,7 +64,10 @@ def test_richardson_not_monotone():
 
 
 def test_pareto_study_quick(par, tmp_path):
-    assert par.row("closed form")["pareto_mu"]                       # cheapest is on the front
+    # the cheapest is on the front (the closed form or the fitted model: they take about
+    # the same time, and the fitted model is the more accurate)
+    fastest = min((r for r in par.rows if r["same_case"]), key=lambda r: r["time_s"])
+    assert fastest["pareto_mu"] and fastest["model"] in ("closed-form", "fitted")
     assert par.row("fe2d Q2 level 0")["error_mu"] < par.row("fe1d P2 level 0")["error_mu"]
     assert par.row("closed form")["time_s"] < par.row("fe1d P2 level 0")["time_s"]
     study_io.write(par, tmp_path)
