@@ -128,3 +128,21 @@ def test_fast_grooved_design_at_high_speed_converges():
     case = _grooved(load_case("cases/base.toml"), 1.27e-3, 0.95, 0.25e-3)
     r = fe2d.solve(case.updated({"roller.speed": 51.8}))
     assert r["converged"] and r["h_min"] > 0.0
+
+
+def test_a_kept_ordering_gives_the_same_solution_to_the_bit():
+    """The orderings are kept by the pattern's bytes (:data:`webfem.fem.newton.ORDERINGS`):
+    a new matrix object of the same pattern reuses one, and its solution equals, to the
+    bit, that of an ordering computed anew."""
+    F, J, calls, n = _problem()
+    A = J(np.linspace(0.5, 2.0, n))
+    b = np.linspace(-1.0, 1.0, n)
+    free = np.arange(1, n - 1)
+    nw.ORDERINGS.clear()
+    fresh = nw.PatternSolver(scaled=True).solve(A, free, b[free])
+    assert len(nw.ORDERINGS) == 1
+    again = nw.PatternSolver(scaled=True).solve(A.copy(), free, b[free])   # kept
+    assert len(nw.ORDERINGS) == 1
+    assert np.array_equal(fresh, again)
+    nw.ORDERINGS.clear()
+    assert np.array_equal(nw.PatternSolver(scaled=True).solve(A.copy(), free, b[free]), fresh)

@@ -14,6 +14,7 @@ Examples
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -87,13 +88,7 @@ class PatternSolver:
         probe = sp.csr_matrix((np.arange(1.0, A.nnz + 1.0), A.indices, A.indptr), shape=A.shape)
         red = probe[free][:, free].tocsc()
         red.sort_indices()
-        structure = sp.csc_matrix((np.ones(red.nnz), red.indices, red.indptr),
-                                  shape=red.shape)
-        structure = structure + sp.identity(red.shape[0], format="csc") * red.shape[0]
-        perm = spla.spilu(structure.tocsc(), permc_spec="MMD_AT_PLUS_A", drop_tol=np.inf,
-                          fill_factor=1.0, diag_pivot_thresh=0.01,
-                          options=dict(SymmetricMode=True)).perm_c
-        inv = np.argsort(perm)
+        inv = _ordering(red)
         B = red[inv][:, inv].tocsc()
         B.sort_indices()
         return (A.indices, A.indptr, B, B.data.astype(np.int64) - 1, inv)
@@ -135,6 +130,38 @@ class PatternSolver:
             x[inv] = s * lu.solve(s * b[inv])
             return x
         return solve_scaled
+
+
+#: The orderings of the patterns factorised last, by the pattern's bytes (at most
+#: :data:`ORDERINGS_KEPT`): a continued sweep point's mesh is the previous point's moved, or
+#: its coarser mesh the previous one's moved, so the same pattern in a new problem. An
+#: ordering is a function of the pattern alone (:meth:`PatternSolver._plan`): one kept gives
+#: the same factorisation, to the bit, as one computed again (a pure cache: no answer
+#: depends on what was solved before).
+ORDERINGS: dict = {}
+ORDERINGS_KEPT = 8
+
+
+def _ordering(red) -> np.ndarray:
+    """The inverse minimum-degree permutation of the (free) pattern ``red`` (CSC, indices
+    sorted), kept in :data:`ORDERINGS`."""
+    key = hashlib.blake2b(np.ascontiguousarray(red.indptr).tobytes()
+                          + np.ascontiguousarray(red.indices).tobytes(),
+                          digest_size=32).digest() + repr(red.shape).encode()
+    inv = ORDERINGS.get(key)
+    if inv is None:
+        structure = sp.csc_matrix((np.ones(red.nnz), red.indices, red.indptr),
+                                  shape=red.shape)
+        structure = structure + sp.identity(red.shape[0], format="csc") * red.shape[0]
+        perm = spla.spilu(structure.tocsc(), permc_spec="MMD_AT_PLUS_A", drop_tol=np.inf,
+                          fill_factor=1.0, diag_pivot_thresh=0.01,
+                          options=dict(SymmetricMode=True)).perm_c
+        inv = np.argsort(perm)
+        inv.setflags(write=False)
+        if len(ORDERINGS) >= ORDERINGS_KEPT:
+            ORDERINGS.pop(next(iter(ORDERINGS)))
+        ORDERINGS[key] = inv
+    return inv
 
 
 def _factorised(A) -> Callable[[np.ndarray], np.ndarray]:
