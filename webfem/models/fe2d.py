@@ -115,6 +115,9 @@ class _Film(Discretisation):
     def __init__(self):
         #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
         self._lines: dict = {}
+        #: the periodic cell's answer of the grooved solve under way (``grooves = "auto"``):
+        #: its web starts the strip's or the full width's Newton (:meth:`start`)
+        self.cell: Result | None = None
 
     def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
         """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
@@ -137,12 +140,16 @@ class _Film(Discretisation):
         so what one solve reports (its stages, the 1-D start's work) never depends on an
         earlier one."""
         self._lines.clear()
+        self.cell = None
 
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None,
-              coarse: bool = True) -> Start:
+              informed: bool = True) -> Start:
         """The start of a solve: continued from ``restart`` (:meth:`_continued`), else cold
-        from the 1-D solution, on a smooth roller with the mesh decided by a 2-D solve on
-        the coarser mesh first (``coarse``, :meth:`_coarse_first`)."""
+        from the 1-D solution. With ``informed`` (not the safe start): on a smooth roller
+        the mesh decided by a 2-D solve on the coarser mesh first (:meth:`_coarse_first`);
+        on a grooved one's strip or full width, the web of the periodic cell's answer when
+        the solve under way has one (:attr:`cell`: 10 -> 4 coupled Newton steps on a 1.27 mm
+        pitch's full width, the same answer to Newton's tolerance)."""
         moved = continued.continued_state(case, options, restart)
         if moved is not None:
             start = self._continued(case, prm, options, moved, restart)
@@ -153,7 +160,7 @@ class _Film(Discretisation):
         one = self._line(smooth, FE2DOptions.line_options(options), line)
         p1, u1 = one.state("problem"), one.state("state")
         spent = SolveInfo(converged=True, iterations=one["iterations"])
-        first = self._coarse_first(case, prm, options, p1, u1) if coarse else None
+        first = self._coarse_first(case, prm, options, p1, u1) if informed else None
         if first is not None:
             fine, u0, coarse_info, kept = first
             return Start(fine, u0, info=coarse_info.after(spent), line=one.restart,
@@ -163,8 +170,17 @@ class _Film(Discretisation):
         # on a smooth roller the 1-D solution is close enough for the coupled Newton; a
         # grooved film is not (the direct steps failed on the grooved cases: 0.27 -> 0.35 s)
         problem.direct = problem.grooves is None
-        return Start(problem, problem.start_from_line(p1, u1, prm), info=spent,
-                     line=one.restart, kept={"line_result": one})
+        u0 = problem.start_from_line(p1, u1, prm)
+        kept = {"line_result": one}
+        if informed and self.cell is not None and problem.grooves is not None \
+                and problem.web_edges and self.cell.case == case:
+            # the cell's web (its film pressure is made consistent with it before the
+            # coupled steps: ``direct`` stays False)
+            web = problem.start_from_line(self.cell.state("problem"), self.cell.state("state"),
+                                          prm, pressure=False)
+            u0[problem.nP:] = web[problem.nP:]
+            kept["cell_web"] = "the web of the periodic cell's answer"
+        return Start(problem, u0, info=spent, line=one.restart, kept=kept)
 
     def _coarse_first(self, case: Case, prm, options: FE2DOptions, p1, u1):
         """The mesh decided before the 2-D solve on it (a cold start on a smooth roller with
@@ -256,7 +272,7 @@ class _Film(Discretisation):
         the depth continuation finds it flying at 2.4 um)."""
         if options.method != "newton":
             return None
-        start = self.start(case, prm, options, None, coarse=False)
+        start = self.start(case, prm, options, None, informed=False)
         p = start.problem
         if p.grooves is not None:
             u, info = continuation.groove_depth(p, start.u0, prm, options.tol,
@@ -348,10 +364,20 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     try:
         if pattern is None or options.grooves != "auto":
             return solve_fe(FILM, case, options, initial, raise_on_failure)
-        return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
-            FILM, case, o, initial, raising and raise_on_failure))
+        return solve_grooved(case, pattern, options, lambda o, raising, cell=None: _with_cell(
+            cell, lambda: solve_fe(FILM, case, o, initial, raising and raise_on_failure)))
     finally:
         FILM.forget_lines()
+
+
+def _with_cell(cell: Result | None, solve):
+    """``solve()`` with :attr:`_Film.cell` set to ``cell`` (a converged periodic cell's
+    answer of this solve) while it runs."""
+    FILM.cell = cell if cell is not None and cell.summary.converged else None
+    try:
+        return solve()
+    finally:
+        FILM.cell = None
 
 
 def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,
