@@ -146,3 +146,12 @@ def test_a_kept_ordering_gives_the_same_solution_to_the_bit():
     assert np.array_equal(fresh, again)
     nw.ORDERINGS.clear()
     assert np.array_equal(nw.PatternSolver(scaled=True).solve(A.copy(), free, b[free]), fresh)
+
+
+def test_chord_steps_do_not_spend_the_newton_budget():
+    """max_iter bounds the Newton steps (the factorisations); chord steps come on top: six
+    Newton steps and the chord step after them converge within max_iter = 6 (a budget that
+    counted the chord step would have stopped one short)."""
+    F, J, calls, n = _problem()
+    fast = nw.newton(F, J, np.full(n, 3.0), tol=1e-10, max_iter=6)
+    assert fast.converged and fast.iterations == 7 and calls["J"] == 6
