@@ -211,10 +211,10 @@ def rounding_floor(Jm, u, free) -> float:
 CHORD_GAIN = 10.0
 
 #: A chord step is also tried when the last step lowered the residual this many times (on
-#: the base case's 24-point speed sweep: 142 factorisations become 110, the median per
+#: the base case's 24-point speed sweep: 142 factorisations become 111, the median per
 #: continued point 5 -> 4, 3 below 3 m/s; a chord step counts as an iteration, so the
 #: median iterations grow 5 -> 8).
-CHORD_TRY = 100.0
+CHORD_TRY = 100.0  # and such a chord step is kept only at this gain too
 
 
 def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.spmatrix],
@@ -239,11 +239,11 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     ``chord``: when the last step's decrease predicts that one more step with the last
     factorisation reaches the tolerance (||F_k||^2 / ||F_k-1|| <= tol: Newton's quadratic
     regime), or when that decrease was at least :data:`CHORD_TRY` times (the Jacobian then
-    moves little over the next step: on the base case's continued sweep points 5e-3 ->
-    2e-4 -> 3e-9 by chord steps where Newton took 5e-3 -> 5e-6 -> 1e-10), that chord step is
-    tried first. It costs a residual and a triangular solve
-    instead of an assembly and a factorisation, and is kept only if it reaches the tolerance
-    or lowers ||F|| :data:`CHORD_GAIN` times; otherwise the iteration takes the Newton step
+    moves little over the next step), that chord step is tried first. It costs a residual
+    and a triangular solve instead of an assembly and a factorisation, and is kept only if
+    it reaches the tolerance or lowers ||F|| :data:`CHORD_GAIN` times (in Newton's quadratic
+    regime) or :data:`CHORD_TRY` times (otherwise: a chord step accepted at a gain of 10
+    away from it led a 1-D continuation onto another branch); otherwise the iteration takes the Newton step
     from the same point. The converged state meets the same tolerance either way. A chord
     step counts as an iteration but not against ``max_iter`` (the Newton steps' budget).
 
@@ -266,10 +266,10 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
             return NewtonResult(u, False, it - 1, norm, history, "residual not finite")
         if norm <= tol:
             return NewtonResult(u, True, it - 1, norm, history, "residual below tolerance")
-        if chord and last is not None and (norm * norm <= tol * history[-2]
-                                           or norm * CHORD_TRY <= history[-2]):
+        near = last is not None and norm * norm <= tol * history[-2]
+        if chord and last is not None and (near or norm * CHORD_TRY <= history[-2]):
             trial, r_trial, n_trial = _chord_step(F, last, u, r, free)
-            if n_trial <= tol or n_trial * CHORD_GAIN <= norm:
+            if n_trial <= tol or n_trial * (CHORD_GAIN if near else CHORD_TRY) <= norm:
                 u, r, norm = trial, r_trial, n_trial
                 history.append(norm)
                 report("newton", it, norm, tol)
