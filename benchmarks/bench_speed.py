@@ -11,7 +11,8 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    test_continued.py);
 3. the median Newton iterations of that sweep's continued points (points 2-24), as each
    result reports them: the solve's steps plus those of its mesh error estimate (a solve on
-   the mesh with cells twice as long);
+   the mesh with cells twice as long), chord steps included; beside it the sparse
+   factorisations they took (a Newton step is one, a chord step none);
 4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
    imports included);
 5. one grooved design, a cold ``webfem.solve(cases/base_grooved.toml, model="fe2d")``
@@ -20,6 +21,7 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    process).
 """
 
+import contextlib
 import statistics
 import subprocess
 import sys
@@ -31,12 +33,29 @@ from common import median_time, target
 
 import webfem
 from webfem import load_case, solve_along
+from webfem.fem import newton
 from webfem.models import fe1d
 
 
 def _cold(case):
     fe1d.LINE.problems.clear()
     return webfem.solve(case, "fe2d")
+
+
+@contextlib.contextmanager
+def _counting(counts):
+    """Count the sparse factorisations (:meth:`webfem.fem.newton.PatternSolver.factor`)
+    into ``counts[-1]`` while in the block."""
+    factor = newton.PatternSolver.factor
+
+    def counted(self, A, free):
+        counts[-1] += 1
+        return factor(self, A, free)
+    newton.PatternSolver.factor = counted
+    try:
+        yield
+    finally:
+        newton.PatternSolver.factor = factor
 
 
 def _cli(args):
@@ -56,9 +75,13 @@ def main(groove_map: bool = True):
     print(target("fe2d cold base case", t, 0.10))
 
     cases = [base.updated({"roller.speed": float(u)}) for u in np.geomspace(0.5, 40.0, 24)]
-    t0 = time.perf_counter()
-    out = list(solve_along(cases, "fe2d"))
-    t = time.perf_counter() - t0
+    factors, out = [0], []
+    with _counting(factors):
+        t0 = time.perf_counter()
+        for res in solve_along(cases, "fe2d"):
+            out.append(res)
+            factors.append(0)
+        t = time.perf_counter() - t0
     its = [res["iterations"] for res in out]
     ok = sum(res["converged"] for res in out)
     print(f"2. 24-point speed sweep 0.5-40 m/s (log-spaced), solve_along: {t:.2f} s, "
@@ -68,6 +91,10 @@ def main(groove_map: bool = True):
     print(f"3. Newton iterations per continued point (solve + mesh error estimate): median "
           f"{med:g}, range {min(its[1:])}-{max(its[1:])}; cold first point {its[0]}")
     print(target("median iterations per continued point", med, 3, ""))
+    fac = factors[1:-1]
+    print(f"   factorisations per continued point (the rest are chord steps, a residual and "
+          f"a triangular solve each): median {statistics.median(fac):g}, range "
+          f"{min(fac)}-{max(fac)}")
 
     t = _cli(["traction-loss", "base", "--mu-min", "0.1", "--model", "fe2d"])
     print(f"4. webfem traction-loss base --mu-min 0.1 --model fe2d: {t:.2f} s (one run, a "

@@ -26,10 +26,13 @@ def _problem():
     return F, J, calls, n
 
 
-@pytest.mark.parametrize("tol, saved", [(1e-8, 1), (1e-10, 1), (1e-12, 0)])
-def test_chord_steps_save_factorisations_at_the_same_tolerance(tol, saved):
+@pytest.mark.parametrize("tol, saved, more", [(1e-8, 1, 0), (1e-10, 1, 0), (1e-12, 1, 1)])
+def test_chord_steps_save_factorisations_at_the_same_tolerance(tol, saved, more):
     """Residuals 1.1e-3 -> 4.5e-8 -> 0: the chord is tried when the last decrease predicts it
-    reaches the tolerance (4.5e-8^2 / 1.1e-3 = 1.8e-12: for 1e-8 and 1e-10, not 1e-12)."""
+    reaches the tolerance (4.5e-8^2 / 1.1e-3 = 1.8e-12: for 1e-8 and 1e-10) or when that
+    decrease was at least :data:`~webfem.fem.newton.CHORD_TRY` times and the chord step
+    lowers the residual as many times (for 1e-12: after Newton's 1.1e-3 -> 4.5e-8, chord
+    steps to 3.8e-12 and 0: one factorisation fewer for one iteration more)."""
     F, J, calls, n = _problem()
     u0 = np.full(n, 3.0)
     plain = nw.newton(F, J, u0, tol=tol, chord=False)
@@ -41,7 +44,7 @@ def test_chord_steps_save_factorisations_at_the_same_tolerance(tol, saved):
     assert np.max(np.abs(fast.u - 1.0)) < 1e-6
     # the last factorisation of the plain solve is replaced by a chord step
     assert j_fast == j_plain - saved
-    assert fast.iterations == plain.iterations
+    assert fast.iterations == plain.iterations + more
 
 
 def test_a_chord_step_that_does_not_pay_is_replaced_by_a_newton_step(monkeypatch):
@@ -125,3 +128,30 @@ def test_fast_grooved_design_at_high_speed_converges():
     case = _grooved(load_case("cases/base.toml"), 1.27e-3, 0.95, 0.25e-3)
     r = fe2d.solve(case.updated({"roller.speed": 51.8}))
     assert r["converged"] and r["h_min"] > 0.0
+
+
+def test_a_kept_ordering_gives_the_same_solution_to_the_bit():
+    """The orderings are kept by the pattern's bytes (:data:`webfem.fem.newton.ORDERINGS`):
+    a new matrix object of the same pattern reuses one, and its solution equals, to the
+    bit, that of an ordering computed anew."""
+    F, J, calls, n = _problem()
+    A = J(np.linspace(0.5, 2.0, n))
+    b = np.linspace(-1.0, 1.0, n)
+    free = np.arange(1, n - 1)
+    nw.ORDERINGS.clear()
+    fresh = nw.PatternSolver(scaled=True).solve(A, free, b[free])
+    assert len(nw.ORDERINGS) == 1
+    again = nw.PatternSolver(scaled=True).solve(A.copy(), free, b[free])   # kept
+    assert len(nw.ORDERINGS) == 1
+    assert np.array_equal(fresh, again)
+    nw.ORDERINGS.clear()
+    assert np.array_equal(nw.PatternSolver(scaled=True).solve(A.copy(), free, b[free]), fresh)
+
+
+def test_chord_steps_do_not_spend_the_newton_budget():
+    """max_iter bounds the Newton steps (the factorisations); chord steps come on top: six
+    Newton steps and two chord steps converge within max_iter = 7 (a budget that counted
+    the chord steps would have stopped one short)."""
+    F, J, calls, n = _problem()
+    fast = nw.newton(F, J, np.full(n, 3.0), tol=1e-12, max_iter=7)
+    assert fast.converged and fast.iterations == 8 and calls["J"] == 6

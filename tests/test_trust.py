@@ -103,11 +103,14 @@ def test_fe1d_continuation_never_jumps_branch():
 
 
 def test_fe2d_continuation_5_to_10():
-    """fe2d in a sweep 5 -> 10 m/s gave h_min = -3.18 um (cold: 4.48 um)."""
+    """fe2d in a sweep 5 -> 10 m/s gave h_min = -3.18 um (cold: 4.48 um). The continued
+    and the cold answer lie on different meshes: they agree within their stated errors
+    (2e-4 apart, each stating about that)."""
     start = webfem.solve(PAPER.updated({"roller.speed": 5.0}), model="fe2d")
     cont = webfem.solve(PAPER.updated({"roller.speed": 10.0}), model="fe2d", initial=start)
     cold = webfem.solve(PAPER.updated({"roller.speed": 10.0}), model="fe2d")
-    assert cont["h_min"] == pytest.approx(cold["h_min"], rel=1e-6)
+    bound = (cont["error_h_min"] + cold["error_h_min"]) * cold["h_min"]
+    assert abs(cont["h_min"] - cold["h_min"]) <= bound
     assert 4e-6 < cold["h_min"] < 5e-6
 
 

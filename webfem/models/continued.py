@@ -155,13 +155,16 @@ class _Gap:
         return self._gap(np.clip(X, self.X[0], self.X[-1]))
 
 
-def planned_nodes(X, prm, options, gap) -> np.ndarray:
+def planned_nodes(X, prm, options, gap, coarser: int = 1) -> np.ndarray:
     """The nodes along x a cold solve would refine its graded start mesh ``X``
     (:func:`webfem.fem.mesh.graded_nodes`) to for the gap ``gap(X)`` (a predicted one):
     bisected by the adaptive rule (:func:`webfem.models.refine.adapted_nodes`), up to
-    ``options.adapt`` rounds, as the 1-D start of a cold solve does with its own gap."""
+    ``options.adapt`` rounds, as the 1-D start of a cold solve does with its own gap.
+    ``coarser``: the rule's cell lengths (``adapt_ratio``, ``min_cell``) times this (2: a
+    mesh whose every cell bisected meets the rule)."""
     for _ in range(options.adapt):
-        finer = adapted_nodes(_Gap(X, gap), None, prm, options.adapt_ratio, options.min_cell)
+        finer = adapted_nodes(_Gap(X, gap), None, prm, coarser * options.adapt_ratio,
+                              coarser * options.min_cell)
         if finer is None:
             break
         X = finer

@@ -214,9 +214,11 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
             "precision the solver needs: a lower level or webfem's default mesh may help",
             None) from None
     mesh_error = MeshError()
+    # a coarse solve the start made (fe2d's cold start): the estimate's, not the result's
+    solved = start.kept.pop("coarse", None)
     if info.converged and options.estimate:
         problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
-                                                            options, _iterate)
+                                                            options, _iterate, solved)
         info.iterations += mesh_error.iterations
         if finer is not None:
             rounds = mesh_error.rounds

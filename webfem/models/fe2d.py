@@ -21,7 +21,7 @@ import numpy as np
 
 from ..case import Case
 from ..fem import continuation, forms
-from ..fem.film_problem import FoilBearing2D
+from ..fem.film_problem import DIRECT_STEPS, FoilBearing2D
 from ..fem.mesh import graded_nodes
 from ..fem.grooves import STRIP_PITCHES, STRIP_SCALED, STRIP_UNVENTED, GroovePattern, \
     choose_domain, edge_effect, graded_groove_nodes, groove_nodes, strip_start, strip_width
@@ -29,7 +29,10 @@ from ..fem.outcome import SolveInfo
 from ..fem.transfer import width_nodes
 from ..result import Rebuild, Result, State
 from . import continued, fe1d
+from ..progress import stage
+from .admissible import admissibility
 from .driver import Discretisation, Start, solve_fe
+from .mesh_error import bisected_nodes, coarser_nodes
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -94,6 +97,10 @@ def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
     return width_nodes(case.lam, options.level, half=options.symmetry, fine=options.width_fine)
 
 
+#: The most solves on the coarse mesh of a cold start (:meth:`_Film._coarse_first`): the
+#: first, and the meshes its gap and the next one's ask for.
+COARSE_ROUNDS = 3
+
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start and its finer-mesh
 #: remedy's).
 LINES_KEPT = 2
@@ -108,6 +115,9 @@ class _Film(Discretisation):
     def __init__(self):
         #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
         self._lines: dict = {}
+        #: the periodic cell's answer of the grooved solve under way (``grooves = "auto"``):
+        #: its web starts the strip's or the full width's Newton (:meth:`start`)
+        self.cell: Result | None = None
 
     def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
         """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
@@ -130,8 +140,16 @@ class _Film(Discretisation):
         so what one solve reports (its stages, the 1-D start's work) never depends on an
         earlier one."""
         self._lines.clear()
+        self.cell = None
 
-    def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
+    def start(self, case: Case, prm, options: FE2DOptions, restart: State | None,
+              informed: bool = True) -> Start:
+        """The start of a solve: continued from ``restart`` (:meth:`_continued`), else cold
+        from the 1-D solution. With ``informed`` (not the safe start): on a smooth roller
+        the mesh decided by a 2-D solve on the coarser mesh first (:meth:`_coarse_first`);
+        on a grooved one's strip or full width, the web of the periodic cell's answer when
+        the solve under way has one (:attr:`cell`: 10 -> 4 coupled Newton steps on a 1.27 mm
+        pitch's full width, the same answer to Newton's tolerance)."""
         moved = continued.continued_state(case, options, restart)
         if moved is not None:
             start = self._continued(case, prm, options, moved, restart)
@@ -141,14 +159,73 @@ class _Film(Discretisation):
         line = restart.line if restart is not None and restart.model == NAME else None
         one = self._line(smooth, FE2DOptions.line_options(options), line)
         p1, u1 = one.state("problem"), one.state("state")
+        spent = SolveInfo(converged=True, iterations=one["iterations"])
+        first = self._coarse_first(case, prm, options, p1, u1) if informed else None
+        if first is not None:
+            fine, u0, coarse_info, kept = first
+            return Start(fine, u0, info=coarse_info.after(spent), line=one.restart,
+                         kept={"line_result": one, **kept})
         problem = problem_for(case, options, p1.X)
         problem.line_start = (p1, u1)
         # on a smooth roller the 1-D solution is close enough for the coupled Newton; a
         # grooved film is not (the direct steps failed on the grooved cases: 0.27 -> 0.35 s)
         problem.direct = problem.grooves is None
-        spent = SolveInfo(converged=True, iterations=one["iterations"])
-        return Start(problem, problem.start_from_line(p1, u1, prm), info=spent,
-                     line=one.restart, kept={"line_result": one})
+        u0 = problem.start_from_line(p1, u1, prm)
+        kept = {"line_result": one}
+        if informed and self.cell is not None and problem.grooves is not None \
+                and problem.web_edges and self.cell.case == case:
+            # the cell's web (its film pressure is made consistent with it before the
+            # coupled steps: ``direct`` stays False)
+            web = problem.start_from_line(self.cell.state("problem"), self.cell.state("state"),
+                                          prm, pressure=False)
+            u0[problem.nP:] = web[problem.nP:]
+            kept["cell_web"] = "the web of the periodic cell's answer"
+        return Start(problem, u0, info=spent, line=one.restart, kept=kept)
+
+    def _coarse_first(self, case: Case, prm, options: FE2DOptions, p1, u1):
+        """The mesh decided before the 2-D solve on it (a cold start on a smooth roller with
+        the mesh error estimate on). The 2-D problem is solved first on a coarse mesh,
+        cheap at a quarter of the unknowns: every other node of the 1-D mesh and of the
+        width's (:func:`webfem.models.mesh_error.coarser_nodes`), bisected where its 2-D
+        gap asks for cells half as fine as the thin-film rule's (:func:`continued.
+        planned_nodes` with ``coarser=2``) and solved again from its state, until the rule
+        asks for nothing more (:data:`COARSE_ROUNDS` at most). The answer's mesh is that
+        mesh with every cell bisected (it meets the rule for the coarse gap; the driver's
+        rounds still check it against its own), started from the coarse state carried
+        over; its coarser mesh is the coarse one, whose solved state the estimate reuses
+        (``kept["coarse"]``). Returns ``(problem, u0, info, kept)`` or None (the direct
+        start on the 1-D mesh: a coarse solve failed or ended inadmissible)."""
+        if (options.method != "newton" or not options.estimate or options.mesh is not None
+                or options.nodes is not None or case.grooved):
+            return None
+        e = 0.5 * prm.beta
+        Z = problem_for_width(case, options)
+        Xc, Zc = coarser_nodes(p1.X, (-e, e)), coarser_nodes(Z)
+        if Xc is None or Zc is None:
+            return None
+        coarse = FoilBearing2D(Xc, Zc, order=options.order)
+        coarse.line_start, coarse.direct = (p1, u1), True
+        uc, info = coarse.start_from_line(p1, u1, prm), None
+        for _ in range(COARSE_ROUNDS):
+            with stage(f"{NAME} newton on a coarse mesh first, {coarse.n_dofs:,} unknowns"):
+                uc, step = coarse.plain_newton(uc, prm, options.tol, options.max_iter,
+                                               DIRECT_STEPS)
+            info = step if info is None else step.after(info)
+            if not info.converged or admissibility(case, coarse, uc, prm):
+                return None
+            X = continued.planned_nodes(coarse.X, prm, options,
+                                        lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
+            if X.size == coarse.X.size:
+                break
+            finer = coarse.variant(X=X)
+            uc, coarse = coarse.transfer(uc, prm, finer), finer
+        else:
+            return None
+        fine = coarse.variant(X=bisected_nodes(coarse.X), Z=Z)
+        if not np.array_equal(coarser_nodes(fine.X, (-e, e)), coarse.X) or \
+                not np.array_equal(coarser_nodes(fine.Z), coarse.Z):
+            return None
+        return fine, coarse.transfer(uc, prm, fine), info, {"coarse": (coarse, uc)}
 
     def _continued(self, case: Case, prm, options: FE2DOptions, moved, restart: State):
         """The start from the previous point (:func:`continued.continued_state`), without a
@@ -195,7 +272,7 @@ class _Film(Discretisation):
         the depth continuation finds it flying at 2.4 um)."""
         if options.method != "newton":
             return None
-        start = self.start(case, prm, options, None)
+        start = self.start(case, prm, options, None, informed=False)
         p = start.problem
         if p.grooves is not None:
             u, info = continuation.groove_depth(p, start.u0, prm, options.tol,
@@ -287,10 +364,20 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     try:
         if pattern is None or options.grooves != "auto":
             return solve_fe(FILM, case, options, initial, raise_on_failure)
-        return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
-            FILM, case, o, initial, raising and raise_on_failure))
+        return solve_grooved(case, pattern, options, lambda o, raising, cell=None: _with_cell(
+            cell, lambda: solve_fe(FILM, case, o, initial, raising and raise_on_failure)))
     finally:
         FILM.forget_lines()
+
+
+def _with_cell(cell: Result | None, solve):
+    """``solve()`` with :attr:`_Film.cell` set to ``cell`` (a converged periodic cell's
+    answer of this solve) while it runs."""
+    FILM.cell = cell if cell is not None and cell.summary.converged else None
+    try:
+        return solve()
+    finally:
+        FILM.cell = None
 
 
 def solve(case: Case, options: FE2DOptions | None = None, *, initial: Result | None = None,

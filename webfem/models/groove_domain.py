@@ -93,10 +93,11 @@ def _change(cell: Result, answer: Result) -> str:
 
 
 def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
-                  solve: Callable[[FE2DOptions, bool], Result]) -> Result:
+                  solve: Callable[..., Result]) -> Result:
     """``grooves = "auto"``: the domain chosen as the module text says, solved with
-    ``solve(options, raise_on_failure)``. The result's ``groove_domain`` says which and why;
-    its ``solve_time_s`` includes the periodic cell's solve."""
+    ``solve(options, raise_on_failure[, cell])`` (``cell``: the periodic cell's answer, which
+    may start the strip's or the full width's solve). The result's ``groove_domain`` says
+    which and why; its ``solve_time_s`` includes the periodic cell's solve."""
     t0 = time.perf_counter()
     if choose_domain("auto", pattern, case.lam) == "full" and \
             choose_domain("auto", pattern, case.lam, vent=1.0) == "full":
@@ -120,7 +121,7 @@ def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
         return _said(cell, domain_text(case, "cell", pattern, **why), t0)
     width = strip_width(pattern.pitch, why["vent"])
     r = solve(options.replace(grooves=domain, strip_width=width if domain == "strip"
-                              else None), True)
+                              else None), True, cell)
     return _said(r, domain_text(case, domain, pattern, width=width, cell=cell, answer=r,
                                 **why), t0)
 

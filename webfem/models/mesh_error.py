@@ -88,7 +88,7 @@ def _newton_options(options):
 
 
 def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, options,
-                        iterate) -> tuple:
+                        iterate, solved=None) -> tuple:
     """The estimate for the solved state ``u`` of ``problem``, refining while it exceeds
     ``options.error_tol``. ``iterate(problem, u0, prm, options) -> (u, info)`` solves on a
     mesh. Returns ``(problem, u, info_or_None, MeshError)``: the answer's problem and state
@@ -96,7 +96,12 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     solve's, else None).
 
     On a grooved film the two directions are estimated apart (:func:`_by_direction`) and
-    only the one whose error is the larger is bisected in a round."""
+    only the one whose error is the larger is bisected in a round.
+
+    ``solved``: ``(problem, state)`` already solved on some mesh (a cold 2-D start's solve on
+    the coarser mesh first); when it is this answer's coarser mesh, the coarse solve starts
+    from that state instead of from the answer carried over (the same discrete solution, to
+    Newton's tolerance, in fewer steps: none when it is still converged)."""
     out = MeshError()
     here = read_out(case, problem, u, prm)
     keep_x, keep_z = _features(problem, prm)
@@ -111,7 +116,10 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
         parts = _by_direction(disc, case, problem, u, prm, options, here, out, Xc, Zc)
     elif Xc is not None:
         with stage(f"{disc.name} error estimate on the coarser mesh"):
-            coarse, uc = disc.remeshed(problem, u, prm, Xc, Zc, options)
+            if _same_mesh(solved, Xc, Zc):
+                coarse, uc = solved[0], solved[1].copy()
+            else:
+                coarse, uc = disc.remeshed(problem, u, prm, Xc, Zc, options)
             uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
         out.iterations += info.iterations
         if info.converged:
@@ -163,6 +171,16 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     elif user_mesh and _exceeds(out.errors, options.error_tol):
         out.notes.append(_user_note(out, options.error_tol))
     return problem, u, last_info, out
+
+
+def _same_mesh(solved, X, Z) -> bool:
+    """Whether ``solved`` (``(problem, state)`` or None) is on the nodes X x Z."""
+    if solved is None:
+        return False
+    p = solved[0]
+    Zp = getattr(p, "Z", None)
+    return (np.array_equal(p.X, X) and (Z is None) == (Zp is None)
+            and (Z is None or np.array_equal(Zp, Z)))
 
 
 def _by_direction(disc, case, problem, u, prm, options, here, out: MeshError, Xc, Zc):

@@ -1,0 +1,76 @@
+"""A cold fe2d start decides its mesh before the 2-D solve on it (issue 23, item 2): a 2-D
+solve on a coarse mesh first (:meth:`webfem.models.fe2d._Film._coarse_first`), the answer's
+mesh that mesh with every cell bisected, and the mesh error estimate's coarse solve the one
+already made (no Newton step); the thin-film rule asks the answer's mesh for nothing more.
+The answer agrees with one on the old start's mesh within the two answers' stated errors,
+and a coarse solve that fails leaves the old start."""
+
+import numpy as np
+import pytest
+from conftest import BASE
+
+import webfem
+from webfem.fem.film_problem import FoilBearing2D
+from webfem.fem.scaling import FoilParameters
+from webfem.models import fe2d
+from webfem.models.mesh_error import coarser_nodes
+from webfem.models.options import FE2DOptions
+from webfem.models.readout import READ_QUANTITIES, error_scale
+
+OPTIONS = FE2DOptions()
+
+
+def _prm(case):
+    o = OPTIONS
+    return FoilParameters.from_case(case, o.compressible, o.contact, o.floor)
+
+
+@pytest.mark.parametrize("speed", [1.5, 20.0])
+def test_the_estimate_confirms_the_mesh_decided_up_front(speed):
+    case = BASE.updated({"roller.speed": speed})
+    prm = _prm(case)
+    start = fe2d.FILM.start(case, prm, OPTIONS, None)
+    coarse, uc = start.kept["coarse"]
+    e = 0.5 * prm.beta
+    assert np.array_equal(coarser_nodes(start.problem.X, (-e, e)), coarse.X)
+    assert np.array_equal(coarser_nodes(start.problem.Z), coarse.Z)
+    fe2d.FILM.forget_lines()
+    r = webfem.solve(case, "fe2d")
+    assert r["converged"] and r["n_dofs"] == start.problem.n_dofs
+    assert r.summary.adapt_rounds == 0          # the rule asked for nothing after the solve
+    assert f"{coarse.n_dofs:,} against {r['n_dofs']:,}" in r.summary.error_basis
+    assert "coarse" not in r.diagnostics.solver            # the result keeps no problem
+
+
+def test_the_estimate_takes_no_newton_step_on_the_reused_mesh(monkeypatch):
+    """The coarse solve of the estimate starts from the coarse state already solved: zero
+    steps (counted: Newton's calls on the estimate's coarse mesh)."""
+    steps = []
+    original = FoilBearing2D.solve_newton
+
+    def counted(self, u0, prm, options):
+        u, info = original(self, u0, prm, options)
+        steps.append((self.n_dofs, info.iterations))
+        return u, info
+
+    monkeypatch.setattr(FoilBearing2D, "solve_newton", counted)
+    r = webfem.solve(BASE, "fe2d")
+    assert r["converged"]
+    # the answer's solve, then the estimate's on the coarse mesh: no step there
+    assert steps[-1][0] < r["n_dofs"] and steps[-1][1] == 0
+
+
+def test_an_inadmissible_coarse_solve_leaves_the_start_on_the_1d_mesh(monkeypatch):
+    """When the coarse solve ends inadmissible (or fails) the start is the old one (the 2-D
+    problem on the 1-D solution's mesh, refined after its solve) and the answer agrees with
+    the mesh decided up front within the two answers' stated errors."""
+    up_front = webfem.solve(BASE, "fe2d")
+    monkeypatch.setattr(fe2d, "admissibility", lambda *args: "made inadmissible")
+    start = fe2d.FILM.start(BASE, _prm(BASE), OPTIONS, None)
+    assert "coarse" not in start.kept
+    fe2d.FILM.forget_lines()
+    old = webfem.solve(BASE, "fe2d")
+    assert old["converged"] and old["n_dofs"] != up_front["n_dofs"]
+    for q in READ_QUANTITIES:
+        bound = sum(r[f"error_{q}"] * error_scale(BASE, q, r[q]) for r in (old, up_front))
+        assert abs(old[q] - up_front[q]) <= bound + 1e-12 * error_scale(BASE, q, old[q]), q
