@@ -108,6 +108,9 @@ class _Film(Discretisation):
     def __init__(self):
         #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
         self._lines: dict = {}
+        #: the solved periodic cell (problem, state) of the grooved solve under way, which
+        #: starts its edge strip or full width (:meth:`FoilBearing2D.start_from_cell`)
+        self._cell = None
 
     def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
         """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
@@ -128,8 +131,9 @@ class _Film(Discretisation):
     def forget_lines(self) -> None:
         """Drop the kept 1-D starts (:meth:`_line`): a solve starts and ends without them,
         so what one solve reports (its stages, the 1-D start's work) never depends on an
-        earlier one."""
+        earlier one. The periodic cell's start goes with them."""
         self._lines.clear()
+        self._cell = None
 
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None) -> Start:
         moved = continued.continued_state(case, options, restart)
@@ -147,8 +151,16 @@ class _Film(Discretisation):
         # grooved film is not (the direct steps failed on the grooved cases: 0.27 -> 0.35 s)
         problem.direct = problem.grooves is None
         spent = SolveInfo(converged=True, iterations=one["iterations"])
+        kept = {"line_result": one}
+        cell = self._cell if restart is None and problem.web_edges else None
+        if cell is not None and cell[0].grooves == problem.grooves:
+            # the grooves' own periodic cell, solved: a solved state, so coupled steps first
+            problem.direct = True
+            kept["started_from"] = "the periodic cell's solution repeated across the width"
+            return Start(problem, problem.start_from_cell(*cell, prm), info=spent,
+                         line=one.restart, kept=kept)
         return Start(problem, problem.start_from_line(p1, u1, prm), info=spent,
-                     line=one.restart, kept={"line_result": one})
+                     line=one.restart, kept=kept)
 
     def _continued(self, case: Case, prm, options: FE2DOptions, moved, restart: State):
         """The start from the previous point (:func:`continued.continued_state`), without a
@@ -195,7 +207,12 @@ class _Film(Discretisation):
         the depth continuation finds it flying at 2.4 um)."""
         if options.method != "newton":
             return None
-        start = self.start(case, prm, options, None)
+        # from the smooth 1-D solution, not the periodic cell: a path of its own
+        cell, self._cell = self._cell, None
+        try:
+            start = self.start(case, prm, options, None)
+        finally:
+            self._cell = cell
         p = start.problem
         if p.grooves is not None:
             u, info = continuation.groove_depth(p, start.u0, prm, options.tol,
@@ -287,8 +304,14 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     try:
         if pattern is None or options.grooves != "auto":
             return solve_fe(FILM, case, options, initial, raise_on_failure)
-        return solve_grooved(case, pattern, options, lambda o, raising: solve_fe(
-            FILM, case, o, initial, raising and raise_on_failure))
+        def solve_domain(o, raising, cell=None):
+            FILM._cell = cell
+            try:
+                return solve_fe(FILM, case, o, initial, raising and raise_on_failure)
+            finally:
+                FILM._cell = None
+
+        return solve_grooved(case, pattern, options, solve_domain)
     finally:
         FILM.forget_lines()
 

@@ -93,9 +93,10 @@ def _change(cell: Result, answer: Result) -> str:
 
 
 def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
-                  solve: Callable[[FE2DOptions, bool], Result]) -> Result:
+                  solve: Callable[..., Result]) -> Result:
     """``grooves = "auto"``: the domain chosen as the module text says, solved with
-    ``solve(options, raise_on_failure)``. The result's ``groove_domain`` says which and why;
+    ``solve(options, raise_on_failure[, cell])`` (``cell``: the solved periodic cell's
+    problem and state, which starts the strip or the full width). The result's ``groove_domain`` says which and why;
     its ``solve_time_s`` includes the periodic cell's solve."""
     t0 = time.perf_counter()
     if choose_domain("auto", pattern, case.lam) == "full" and \
@@ -119,8 +120,11 @@ def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
     if domain == "cell":
         return _said(cell, domain_text(case, "cell", pattern, **why), t0)
     width = strip_width(pattern.pitch, why["vent"])
+    # the solved cell starts the strip or the full width (the periodic interior is the
+    # cell's; :meth:`webfem.fem.film_problem.FoilBearing2D.start_from_cell`)
+    start = (cell.state("problem"), cell.state("state")) if cell is not None else None
     r = solve(options.replace(grooves=domain, strip_width=width if domain == "strip"
-                              else None), True)
+                              else None), True, start)
     return _said(r, domain_text(case, domain, pattern, width=width, cell=cell, answer=r,
                                 **why), t0)
 
