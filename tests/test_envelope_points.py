@@ -75,6 +75,12 @@ FAST = [
     pytest.param(point("board", 0.049130085295654304, 136.21272609428226, 21.582978900383086,
                        1.232876233589238, 2.89440563032965, 2.0471734411643236),
                  id="86-board-driven-past-the-fold"),
+    # Dn 2300: Newton's iterates reach the residual's rounding floor (1e-3) with a correction
+    # of 1e-9-1e-6 that no step lowers (accepted at the floor; was "line search failed" on
+    # every path, then 60 s of fe2d)
+    pytest.param(point("board", 0.022870793425287805, 48.03214406339539, 23.298022785291085,
+                       1.0570783652655031, 8.621917941139357, 8.621917941139357),
+                 id="57-board-idler-at-the-rounding-floor"),
     pytest.param(point("board", 0.06022614488371616, 246.37427321720466, 13.30501278689511,
                        0.012320407854979261, 12.61228954262293, 15.4485795560439),
                  id="60-board-driven-narrow"),
