@@ -19,6 +19,8 @@ FoilBearing2D`, :class:`webfem.models.line.FoilBearing1D`).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..progress import stage
@@ -219,6 +221,11 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
             out = problem.newton(u, prm.film_strength(a), tol,
                                  min(max_iter, FIRST_TRY) if jump else max_iter)
         done = SolveInfo.of(out, steps).after(done)
+        if out.converged and problem.vacuum(out.u, prm):
+            # a step that ends with the absolute film pressure <= 0 has left the physical
+            # path (a sub-vacuum branch of the discrete problem): a shorter step instead
+            out = dataclasses.replace(out, converged=False,
+                                      reason="the absolute film pressure fell to <= 0")
         if out.converged:
             u, a_prev = out.u, a
             steps.append(a)
