@@ -166,11 +166,14 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
     ``options.adapt``, fewer once a round has settled (:data:`ADAPT_SETTLED`)."""
     rounds = 0
     settle = options.adapt_settle and options.mesh is None and options.nodes is None
-    before = read_out(case, problem, u, prm) if settle and info.converged else None
+    before = None
     while info.converged and rounds < options.adapt:
         X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
         if X is None:
             break
+        if settle and rounds == 0:
+            # read only when a round follows (most continued points refine nothing)
+            before = read_out(case, problem, u, prm)
         rounds += 1
         finer, u_fine = disc.remeshed(problem, u, prm, X, getattr(problem, "Z", None),
                                       options)
