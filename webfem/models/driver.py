@@ -105,8 +105,10 @@ class Discretisation:
         it anyway)."""
         return problem
 
-    def state(self, case: Case, problem, u, start: Start, options=None) -> State:
-        """What a later solve restarts from (``options``: those it was solved with)."""
+    def state(self, case: Case, problem, u, start: Start, options=None,
+              coarse=None) -> State:
+        """What a later solve restarts from (``options``: those it was solved with;
+        ``coarse``: ``(problem, state)`` solved on the answer's coarser mesh, or None)."""
         return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())
 
 
