@@ -11,7 +11,8 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    test_continued.py);
 3. the median Newton iterations of that sweep's continued points (points 2-24), as each
    result reports them: the solve's steps plus those of its mesh error estimate (a solve on
-   the mesh with cells twice as long), chord steps included; beside it the sparse
+   the mesh with cells twice as long; a continued point solves that mesh first, its
+   two-grid start, and the estimate reuses it), chord steps included; beside it the sparse
    factorisations they took (a Newton step is one, a chord step none);
 4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
    imports included);

@@ -262,7 +262,10 @@ class _Film(Discretisation):
             kept["continued"] = note + ", carried over to the mesh its gap asks for"
         two = self._two_grid(case, prm, options, problem, u0, restart, on_moved)
         if two is not None:
-            u0, info, kept["coarse"] = two
+            if two[0] is not problem:
+                kept.pop("continued_from", None)      # another mesh: no secant from it
+                kept["continued"] += ", refined where its coarser mesh's gap asks"
+            problem, u0, info, kept["coarse"] = two
             kept["continued"] += ", corrected by its coarser mesh solved first"
         # a solved state carried over: Newton's coupled steps straight away
         problem.direct = True
@@ -280,7 +283,12 @@ class _Film(Discretisation):
         steps (2-3 factorisations) to 3 (one factorisation and two chord steps), and the
         estimate's coarse solve is the one made here (none left). Returns ``(u0, info,
         (coarse, state))`` or None (no coarse state kept, a coarse solve that fails or ends
-        inadmissible: the fine start alone)."""
+        inadmissible: the fine start alone). Where the coarse solution's gap asks for a finer
+        mesh (the thin-film rule at cells twice as long, :func:`continued.planned_nodes`),
+        the coarse mesh is refined and solved again and the fine mesh is that one bisected
+        (the mesh decided before the fine solve, as a cold start's: on the sweep, two points
+        whose fine solve had the driver refine and solve again). Returns ``(fine, u0, info,
+        (coarse, state))``."""
         kept = restart.coarse
         if kept is None or options.method != "newton" or not options.estimate:
             return None
@@ -295,32 +303,58 @@ class _Film(Discretisation):
         before = restart.u.copy()
         before[moved.fixed] = 0.0
         Xo = continued.moved_nodes(Xp, 2.0 * e0, 2.0 * e)
+        Zo = Zp * (case.lam / restart.case.lam)
         if not np.allclose(Xo[[0, -1]], moved.X[[0, -1]], rtol=1e-9, atol=1e-9):
             return None
         Xo[[0, -1]] = moved.X[[0, -1]]          # the ends to rounding, as :meth:`_continued`
-        old = moved.variant(X=Xo, Z=Zp * (case.lam / restart.case.lam))
-        if old.n_dofs != up.size:
-            return None
+        if Xo.size == Xc.size and Zo.size == Zc.size and np.allclose(Xo, Xc, rtol=1e-12, atol=1e-12) \
+                and np.allclose(Zo, Zc, rtol=1e-12, atol=1e-12):
+            if coarse.n_dofs != up.size:        # the previous coarse mesh, moved
+                return None
+        else:
+            old = moved.variant(X=Xo, Z=Zo)
+            if old.n_dofs != up.size:
+                return None
+            up = old.transfer(up, prm, coarse)
         if fine is not moved:
             before = moved.transfer(before, prm, fine)
-        if coarse.n_dofs != up.size or not (np.allclose(coarse.X, old.X, rtol=1e-12, atol=1e-12)
-                                            and np.allclose(coarse.Z, old.Z, rtol=1e-12,
-                                                            atol=1e-12)):
-            up = old.transfer(up, prm, coarse)
-        uc0 = fine.transfer(u0, prm, coarse) + (up - fine.transfer(before, prm, coarse))
+        # the transfers are linear: the difference carried once
+        uc0 = up + fine.transfer(u0 - before, prm, coarse)
+        coarse_first = coarse
         uc0[coarse.fixed] = 0.0
         if not np.all(np.isfinite(uc0)):
             return None
-        with stage(f"{NAME} newton on the coarser mesh first, {coarse.n_dofs:,} unknowns"):
-            uc, info = coarse.plain_newton(uc0, prm, options.tol, options.max_iter,
-                                           DIRECT_STEPS)
-        if not info.converged or admissibility(case, coarse, uc, prm):
+        info = None
+        for _ in range(COARSE_ROUNDS):
+            with stage(f"{NAME} newton on the coarser mesh first, {coarse.n_dofs:,} unknowns"):
+                uc, step = coarse.plain_newton(uc0, prm, options.tol, options.max_iter,
+                                               DIRECT_STEPS)
+            info = step if info is None else step.after(info)
+            if not info.converged or admissibility(case, coarse, uc, prm):
+                return None
+            # the mesh decided before the fine solve, as a cold start's (:meth:`_coarse_first`):
+            # the coarse mesh bisected where its own gap asks for cells half as fine as the
+            # thin-film rule's, solved again, the fine mesh that one bisected
+            X = continued.planned_nodes(coarse.X, prm, options,
+                                        lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
+            if X.size == coarse.X.size:
+                break
+            finer = coarse.variant(X=X)
+            uc0, coarse = coarse.transfer(uc, prm, finer), finer
+        else:
             return None
-        u1 = coarse.transfer(uc, prm, fine) + (before - coarse.transfer(up, prm, fine))
+        # the previous point's fine-minus-coarse difference, on this point's fine mesh
+        detail = before - coarse_first.transfer(up, prm, fine)
+        if coarse is not coarse_first:
+            other = coarse.variant(X=bisected_nodes(coarse.X), Z=fine.Z)
+            if not np.array_equal(coarser_nodes(other.X, (-e, e)), coarse.X):
+                return None
+            detail, fine = fine.transfer(detail, prm, other), other
+        u1 = coarse.transfer(uc, prm, fine) + detail
         u1[fine.fixed] = 0.0
         if not np.all(np.isfinite(u1)):
             return None
-        return u1, info, (coarse, uc)
+        return fine, u1, info, (coarse, uc)
 
     def safe_start(self, case: Case, prm, options: FE2DOptions) -> Start | None:
         """The starting mesh solved along the continuation that follows the flying film's
