@@ -11,7 +11,8 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    test_continued.py);
 3. the median Newton iterations of that sweep's continued points (points 2-24), as each
    result reports them: the solve's steps plus those of its mesh error estimate (a solve on
-   the mesh with cells twice as long), chord steps included; beside it the sparse
+   the mesh with cells twice as long; a continued point solves that mesh first, its
+   two-grid start, and the estimate reuses it), chord steps included; beside it the sparse
    factorisations they took (a Newton step is one, a chord step none);
 4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
    imports included);
@@ -43,13 +44,15 @@ def _cold(case):
 
 
 @contextlib.contextmanager
-def _counting(counts):
+def _counting(counts, sizes=None):
     """Count the sparse factorisations (:meth:`webfem.fem.newton.PatternSolver.factor`)
-    into ``counts[-1]`` while in the block."""
+    into ``counts[-1]`` while in the block, and their matrices' sizes into ``sizes[-1]``."""
     factor = newton.PatternSolver.factor
 
     def counted(self, A, free):
         counts[-1] += 1
+        if sizes is not None:
+            sizes[-1].append(A.shape[0])
         return factor(self, A, free)
     newton.PatternSolver.factor = counted
     try:
@@ -75,12 +78,13 @@ def main(groove_map: bool = True):
     print(target("fe2d cold base case", t, 0.10))
 
     cases = [base.updated({"roller.speed": float(u)}) for u in np.geomspace(0.5, 40.0, 24)]
-    factors, out = [0], []
-    with _counting(factors):
+    factors, sizes, out = [0], [[]], []
+    with _counting(factors, sizes):
         t0 = time.perf_counter()
         for res in solve_along(cases, "fe2d"):
             out.append(res)
             factors.append(0)
+            sizes.append([])
         t = time.perf_counter() - t0
     its = [res["iterations"] for res in out]
     ok = sum(res["converged"] for res in out)
@@ -92,9 +96,11 @@ def main(groove_map: bool = True):
           f"{med:g}, range {min(its[1:])}-{max(its[1:])}; cold first point {its[0]}")
     print(target("median iterations per continued point", med, 3, ""))
     fac = factors[1:-1]
+    fine = [sum(n == res["n_dofs"] for n in s) for s, res in zip(sizes[1:-1], out[1:])]
     print(f"   factorisations per continued point (the rest are chord steps, a residual and "
           f"a triangular solve each): median {statistics.median(fac):g}, range "
-          f"{min(fac)}-{max(fac)}")
+          f"{min(fac)}-{max(fac)}; of them on the answer's mesh (the rest on coarser ones): "
+          f"median {statistics.median(fine):g}, range {min(fine)}-{max(fine)}")
 
     t = _cli(["traction-loss", "base", "--mu-min", "0.1", "--model", "fe2d"])
     print(f"4. webfem traction-loss base --mu-min 0.1 --model fe2d: {t:.2f} s (one run, a "

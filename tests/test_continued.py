@@ -106,3 +106,27 @@ def test_moved_nodes_keep_the_wrap_edges_and_the_entry_length():
     assert Y[0] - Y[2] == pytest.approx(X[0] - X[2])          # the entry zone's length
     assert Y[-1] - Y[-2] == pytest.approx(X[-1] - X[-2])
     assert np.all(np.diff(Y) > 0)
+
+
+def test_two_grid_start_solves_the_coarser_mesh_first():
+    """A continued point whose restart keeps its coarse state (``restart.coarse``, the
+    estimate's coarser mesh) solves that mesh first and starts the fine Newton from it: on
+    the same mesh, the answer is the one started without it (the coarse state dropped) to
+    Newton's tolerance, with the same stated errors, and within its stated errors of the
+    cold solve."""
+    cases = [BASE.updated({"roller.speed": u}) for u in (15.4, 18.6)]
+    first = webfem.solve(cases[0], "fe2d")
+    assert first.restart.coarse is not None
+    Xc, Zc, uc = first.restart.coarse
+    assert uc.size < first.restart.u.size and Xc.size < first.restart.X.size
+    two = webfem.solve(cases[1], "fe2d", initial=first)
+    plain = webfem.solve(cases[1], "fe2d",
+                         initial=dataclasses.replace(first.restart, coarse=None))
+    assert "coarser mesh solved first" in two.diagnostics.solver["continued"]
+    assert "coarser mesh" not in plain.diagnostics.solver["continued"]
+    assert two["n_dofs"] == plain["n_dofs"]
+    for q in READ_QUANTITIES:
+        assert two[q] == pytest.approx(plain[q], rel=1e-7, abs=1e-15), q
+        assert two[f"error_{q}"] == pytest.approx(plain[f"error_{q}"], rel=1e-5, abs=1e-12)
+    cold = webfem.solve(cases[1], "fe2d")
+    assert agree(cases[1], two, cold) == []

@@ -319,3 +319,20 @@ def test_traction_loss_says_which_model_answered(capsys):
     auto = TractionLoss(20.0, "auto", 0.1, 0.3, 5.0, (15.0, 25.0), 20, "found", "fe2d",
                         ("fe1d", "fe2d"))
     assert auto.answered() == "auto: fe2d; the scan also used fe1d"
+
+
+def test_the_root_find_solves_no_speed_twice(monkeypatch):
+    """Brent's first evaluations are the bracket's ends, the scan's own answers: read, not
+    solved again; ``evaluations`` counts the solves made."""
+    import webfem.traction as tl
+
+    speeds = []
+    scan = tl._scan
+
+    def recorded(case, us, *args, **kwargs):
+        speeds.extend(float(u) for u in us)
+        return scan(case, us, *args, **kwargs)
+    monkeypatch.setattr(tl, "_scan", recorded)
+    out = tl.traction_loss_speed(Case(), 0.1, "closed-form")
+    assert len(speeds) == len(set(speeds)) == out.evaluations
+    assert out.bracket[0] < out.speed < out.bracket[1]

@@ -144,7 +144,9 @@ class State:
     For the 2-D film also ``key``: the options it was solved with (a restart with others
     starts from its 1-D state only), and ``prior``: the case and DOF vector of the point
     before it on a path when that point was solved on the same mesh (one level deep: a
-    secant predictor's second point, :mod:`webfem.models.continued`)."""
+    secant predictor's second point, :mod:`webfem.models.continued`), and ``coarse``: the
+    nodes and solved DOF vector ``(X, Z, u)`` on the answer's coarser mesh (its error
+    estimate's), from which the next point's coarse solve starts (two-grid start)."""
 
     case: Case
     model: str
@@ -154,6 +156,7 @@ class State:
     line: "State | None" = None
     key: dict | None = None
     prior: tuple | None = None
+    coarse: tuple | None = None
 
     def __repr__(self) -> str:
         z = f" x {len(self.Z)} Z" if self.Z is not None else ""

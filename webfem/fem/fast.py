@@ -29,10 +29,13 @@ Examples
 
 from __future__ import annotations
 
+import hashlib
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["BasisData", "Pattern", "test_layout", "contract_layout"]
+__all__ = ["BasisData", "Pattern", "pattern_of", "test_layout", "contract_layout",
+           "PATTERNS_KEPT"]
 
 class BasisData:
     """A scikit-fem basis read once: per local basis function, its values, gradients and
@@ -144,11 +147,16 @@ class Pattern:
         rows = np.concatenate([np.ravel(r) for r, _ in blocks]).astype(np.int64)
         cols = np.concatenate([np.ravel(c) for _, c in blocks]).astype(np.int64)
         self.sizes = [np.size(r) for r, _ in blocks]
-        keys, self.slot = _unique_inverse(rows * self.shape[1] + cols)
+        keys, slot = _unique_inverse(rows * self.shape[1] + cols)
+        # int32: half the memory of a kept pattern, the same bincount time
+        self.slot = slot.astype(np.int32) if keys.size < 2**31 else slot
         r = keys // self.shape[1]
         self.indices = (keys - r * self.shape[1]).astype(np.int32)     # cheaper than %
         self.indptr = np.searchsorted(r, np.arange(self.shape[0] + 1)).astype(np.int32)
         self.nnz = keys.size
+        #: what a consumer derives from the pattern, kept with it (the factorisation plans
+        #: of :class:`webfem.fem.newton.PatternSolver`)
+        self.plans: dict = {}
 
     def matrix(self, values) -> sp.csr_matrix:
         """The CSR matrix with the blocks' values (same order and shapes as the blocks)."""
@@ -157,6 +165,40 @@ class Pattern:
         A = sp.csr_matrix(self.shape)
         A.data, A.indices, A.indptr = data, self.indices, self.indptr
         return A
+
+
+#: The patterns built last, by the bytes of the blocks' DOF maps (at most
+#: :data:`PATTERNS_KEPT`): a continued sweep point's mesh is the previous point's moved (the
+#: same cells and DOFs at other coordinates), so the same pattern. A pattern is a function
+#: of the DOF maps alone: one kept is the one built again, and sharing its index arrays lets
+#: :class:`webfem.fem.newton.PatternSolver` reuse its ordering plan too (a pure cache: no
+#: answer depends on what was built before). A kept pattern's plans go with it
+#: (:attr:`Pattern.plans`).
+PATTERNS: dict = {}
+PATTERNS_KEPT = 4
+
+
+def pattern_of(dof_pairs, shape) -> Pattern:
+    """The :class:`Pattern` of the blocks whose (row, column) DOFs are the outer products of
+    ``dof_pairs`` ((row DOFs (function, element), column DOFs (function, element)) per
+    block), kept in :data:`PATTERNS`."""
+    h = hashlib.blake2b(repr(tuple(int(s) for s in shape)).encode(), digest_size=32)
+    for r, c in dof_pairs:
+        for a in (r, c):
+            a = np.ascontiguousarray(a, dtype=np.int64)
+            h.update(repr(a.shape).encode())
+            h.update(a.tobytes())
+    key = h.digest()
+    pattern = PATTERNS.get(key)
+    if pattern is None:
+        blocks = [(np.broadcast_to(r[:, None, :], (r.shape[0],) + c.shape),
+                   np.broadcast_to(c[None, :, :], (r.shape[0],) + c.shape))
+                  for r, c in dof_pairs]
+        pattern = Pattern(blocks, shape)
+        if len(PATTERNS) >= PATTERNS_KEPT:
+            PATTERNS.pop(next(iter(PATTERNS)))
+        PATTERNS[key] = pattern
+    return pattern
 
 
 def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -140,12 +140,7 @@ class FoilBearing2D:
         self.free = np.flatnonzero(is_free)          # np.setdiff1d's answer, without a sort
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
-        self._mass, self._system = None, None
-        #: the factorisation plans of this mesh's Jacobians (fill-reducing ordering), each
-        #: factorised with a unit diagonal (a landing web's contact stiffness otherwise
-        #: forces row exchanges that undo the ordering: :class:`~webfem.fem.newton.
-        #: PatternSolver`)
-        self.solver = PatternSolver(scaled=True)
+        self._mass, self._system, self._solver = None, None, None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
@@ -190,6 +185,17 @@ class FoilBearing2D:
             width = self.width / self.weight_q if self.strip else self.width
             self._system = FilmSystem(self.fbasis, self.wbasis, self.T, width, self.groove_q)
         return self._system
+
+    @property
+    def solver(self) -> PatternSolver:
+        """The factorisations of this mesh's Jacobians, each with a unit diagonal (a landing
+        web's contact stiffness otherwise forces row exchanges that undo the ordering:
+        :class:`~webfem.fem.newton.PatternSolver`); their plans (fill-reducing ordering)
+        kept with the pattern, which a moved mesh shares (:func:`webfem.fem.fast.
+        pattern_of`)."""
+        if self._solver is None:
+            self._solver = PatternSolver(scaled=True, plans=self.system.pattern.plans)
+        return self._solver
 
     def residual(self, u, prm) -> np.ndarray:
         """The coupled residual."""

@@ -69,10 +69,13 @@ class PatternSolver:
     same pattern and ordering, and the same solution to rounding.
     """
 
-    def __init__(self, size: int = 6, scaled: bool = False):
+    def __init__(self, size: int = 6, scaled: bool = False, plans: dict | None = None):
         self.size = size
         self.scaled = bool(scaled)
-        self._plans: dict = {}         # (id(indices), id(indptr), free bytes) -> plan
+        # (id(indices), id(indptr), free bytes) -> plan; ``plans``: a dict kept elsewhere
+        # (a :class:`webfem.fem.fast.Pattern`'s, shared by the problems of one mesh
+        # topology: a continued point's new problem finds the previous point's plan)
+        self._plans: dict = {} if plans is None else plans
 
     @staticmethod
     def _factor(B, spec):
@@ -91,7 +94,9 @@ class PatternSolver:
         inv = _ordering(red)
         B = red[inv][:, inv].tocsc()
         B.sort_indices()
-        return (A.indices, A.indptr, B, B.data.astype(np.int64) - 1, inv)
+        # the ordered matrix's structure only (its values are gathered at each solve)
+        return (A.indices, A.indptr, (B.indices, B.indptr, B.shape),
+                (B.data - 1).astype(np.int32 if A.nnz < 2**31 else np.int64), inv)
 
     def solve(self, A, free, b) -> np.ndarray:
         """Solve A[free][:, free] x = b."""
@@ -105,11 +110,12 @@ class PatternSolver:
         key = (id(A.indices), id(A.indptr), free.tobytes())
         plan = self._plans.get(key)
         if plan is None or plan[0] is not A.indices or plan[1] is not A.indptr:
-            if len(self._plans) >= self.size:
-                self._plans.clear()
+            while len(self._plans) >= self.size:
+                self._plans.pop(next(iter(self._plans)))
             plan = self._plans[key] = self._plan(A, free)   # keeps the ids unique
-        _, _, B, gather, inv = plan
-        B.data = A.data[gather]
+        _, _, (indices, indptr, shape), gather, inv = plan
+        B = sp.csc_matrix((A.data[gather], indices, indptr), shape=shape, copy=False)
+        B.has_canonical_format = True      # as the plan left it: sorted, no duplicates
         if not self.scaled:
             lu = self._factor(B, "NATURAL")
 

@@ -48,7 +48,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 
-from .fast import Pattern, contract_layout, test_layout
+from .fast import contract_layout, pattern_of, test_layout
 
 __all__ = ["Term", "Block", "WeakForm", "Space", "Part", "FastForm", "skfem_forms", "coefficient",
            "OPERATORS"]
@@ -216,12 +216,10 @@ class FastForm:
             for (fi, fj), group in groups.items():
                 ops = list(dict.fromkeys(b.op for b in group))
                 layouts[fi, fj] = (ops, test_layout(np.stack([sp_[fi].ops[o] for o in ops])))
-                r, c = sp_[fi].dofs, sp_[fj].dofs
-                pairs.append((np.broadcast_to(r[:, None, :], (r.shape[0],) + c.shape),
-                              np.broadcast_to(c[None, :, :], (r.shape[0],) + c.shape)))
+                pairs.append((sp_[fi].dofs, sp_[fj].dofs))
             self._groups.append(groups)
             self._layouts.append(layouts)
-        self.pattern = Pattern(pairs, (self.n, self.n)) if pairs else None
+        self.pattern = pattern_of(pairs, (self.n, self.n)) if pairs else None
 
     def residual(self, values) -> np.ndarray:
         """F from each part's coefficient arrays (``values``: one dict per part)."""

@@ -6,9 +6,12 @@ start mesh, the refinement where the film is thin) and its state (Newton from th
 solution). Along a path of nearby cases (a sweep) the previous point has both: its final
 mesh, moved with the scaled geometry (:func:`moved_nodes`), and its state, extrapolated
 along the path when the point before it was solved on the same mesh (:func:`secant_factor`),
-start this point's Newton. Nothing here decides the answer: the driver still refines where
-the film is thin, the mesh error estimate still confirms (or refines) the mesh, and a start
-that fails or ends inadmissible is retried cold (:func:`webfem.models.driver.solve_fe`).
+start this point's Newton. When the previous point kept its solution on its coarser mesh
+(``State.coarse``, the error estimate's), the 2-D model solves this point's coarser mesh
+first and starts the fine Newton from it (a two-grid start: :meth:`webfem.models.fe2d.
+_Film._two_grid`). Nothing here decides the answer: the driver still refines where the film
+is thin, the mesh error estimate still confirms (or refines) the mesh, and a start that
+fails or ends inadmissible is retried cold (:func:`webfem.models.driver.solve_fe`).
 
 Examples
 --------

@@ -105,8 +105,10 @@ class Discretisation:
         it anyway)."""
         return problem
 
-    def state(self, case: Case, problem, u, start: Start, options=None) -> State:
-        """What a later solve restarts from (``options``: those it was solved with)."""
+    def state(self, case: Case, problem, u, start: Start, options=None,
+              coarse=None) -> State:
+        """What a later solve restarts from (``options``: those it was solved with;
+        ``coarse``: ``(problem, state)`` solved on the answer's coarser mesh, or None)."""
         return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())
 
 
@@ -166,11 +168,14 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
     ``options.adapt``, fewer once a round has settled (:data:`ADAPT_SETTLED`)."""
     rounds = 0
     settle = options.adapt_settle and options.mesh is None and options.nodes is None
-    before = read_out(case, problem, u, prm) if settle and info.converged else None
+    before = None
     while info.converged and rounds < options.adapt:
         X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
         if X is None:
             break
+        if settle and rounds == 0:
+            # read only when a round follows (most continued points refine nothing)
+            before = read_out(case, problem, u, prm)
         rounds += 1
         finer, u_fine = disc.remeshed(problem, u, prm, X, getattr(problem, "Z", None),
                                       options)

@@ -47,6 +47,9 @@ class MeshError:
     notes: list[str] = field(default_factory=list)
     iterations: int = 0
     rounds: int = 0
+    #: ``(problem, state)`` solved on the answer's coarser mesh (the estimate's; None on a
+    #: grooved film, estimated by direction, or when it did not converge)
+    coarse: tuple | None = None
 
 
 def coarser_nodes(nodes: np.ndarray, keep=()) -> np.ndarray:
@@ -123,6 +126,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
             uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
         out.iterations += info.iterations
         if info.converged:
+            out.coarse = (coarse, uc)
             out.errors = errors_between(case, here, read_out(case, coarse, uc, prm))
             out.basis = (f"change from the mesh with cells twice as long ({coarse.n_dofs:,} "
                          f"against {problem.n_dofs:,} unknowns)")
@@ -162,6 +166,8 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
                          f"across the width, summed (the last bisection "
                          f"{'along x' if along_x else 'across'}: {problem.n_dofs:,} against "
                          f"{fine.n_dofs:,} unknowns)")
+        if parts is None:
+            out.coarse = (problem, u)
         problem, u, here, Z, last_info = fine, uf, finer, getattr(fine, "Z", None), info
         out.rounds += 1
     if out.errors["h_center"] is None:

@@ -67,7 +67,22 @@ def pressure_and_gradient(case: Case, problem, u, X) -> tuple[np.ndarray, np.nda
 
 
 def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
-    """The quantities of a solved state ``u`` of ``problem`` (SI units)."""
+    """The quantities of a solved state ``u`` of ``problem`` (SI units). The last one read
+    of a problem is kept on it: the error estimate and the result read the same answer
+    (a pure function of its arguments; about 10 ms on a 2-D mesh of 2e4 unknowns)."""
+    kept = getattr(problem, "_read_out", None)
+    if kept is not None and kept[0] is case and kept[1] is prm and kept[2].shape == \
+            np.shape(u) and np.array_equal(kept[2], u):
+        return kept[3]
+    out = _read_out(case, problem, u, prm)
+    try:
+        problem._read_out = (case, prm, np.array(u, float, copy=True), out)
+    except AttributeError:      # a problem without a __dict__: nothing kept
+        pass
+    return out
+
+
+def _read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
     Hs = case.h_scale
     pts, wts = wrap_samples(problem.X, prm.beta)
     h = problem.gap(u, prm, pts) * Hs
