@@ -22,7 +22,17 @@ from .forms import (COUPLING, FILM, SINK, WEB, coupling_coefficients, film_coeff
                     web_coefficients)
 from .weakform import FastForm, Part, Space, coefficient, skfem_forms
 
-__all__ = ["LineSystem", "FilmSystem", "width_load"]
+__all__ = ["LineSystem", "FilmSystem", "width_load", "cell_lengths"]
+
+
+def cell_lengths(basis) -> np.ndarray:
+    """The length along X of the cell of each quadrature point of ``basis`` (element,
+    point): the cell size in the film's streamline diffusion (:func:`webfem.fem.forms.
+    film_coefficients`)."""
+    mesh = basis.mesh
+    x = mesh.p[0, mesh.t]                                       # (vertex, element)
+    return np.broadcast_to((x.max(axis=0) - x.min(axis=0))[:, None],
+                           np.shape(basis.dx)).copy()
 
 
 def width_load(T: dict, Pq: np.ndarray, width: float) -> np.ndarray:
@@ -66,6 +76,7 @@ class LineSystem:
             parts.append(Part((SINK,), {"p": Space.from_basis(s, 0)}, s.dx))
         self.fast = FastForm(parts, b.N)
         self.pattern = self.fast.pattern
+        self.hx = cell_lengths(basis)
         self._last = _LastState()
         self._geometry = {}
         self._reference = None
@@ -76,12 +87,13 @@ class LineSystem:
         return self._geometry[beta]
 
     def coefficients(self, x, P, dP, W, dW, ddW, prm, newton: bool = True,
-                     geometry=None) -> dict:
-        """Every coefficient of the 1-D system at points x from the state there."""
+                     geometry=None, hx=None) -> dict:
+        """Every coefficient of the 1-D system at points x (in cells of lengths ``hx``) from
+        the state there."""
         args = prm.as_form_args()
         D, chi = geometry if geometry is not None else (forms.departure(x, prm.beta),
                                                         forms.in_wrap(x, prm.beta))
-        return {**film_coefficients(W + D, P, dP, 0.0, args, newton),
+        return {**film_coefficients(W + D, P, dP, 0.0, args, newton, hx),
                 **web_coefficients(x, W, dW, ddW, args, (D, chi)),
                 **coupling_coefficients(P, 1.0)}
 
@@ -92,7 +104,7 @@ class LineSystem:
             P, dP = b.interpolate(u, 0)
             W, dW, ddW = b.interpolate(u, 1, hess=True)
             out = [self.coefficients(b.x, P, dP[0], W, dW[0], ddW, prm, newton,
-                                     self._geometry_at(b.x, prm.beta))]
+                                     self._geometry_at(b.x, prm.beta), self.hx)]
             if self.s is not None:
                 Ps = self.s.interpolate(u, 0)[0]
                 # the sink's coefficients need the pressure only (the gap is not read)
@@ -114,7 +126,7 @@ class LineSystem:
         P = bp.interpolate(u[self.basis.split_indices()[0]])
         W = bw.interpolate(u[self.basis.split_indices()[1]])
         return self.coefficients(x, np.asarray(P), P.grad[0], np.asarray(W), W.grad[0],
-                                 W.hess[0, 0], prm, newton)
+                                 W.hess[0, 0], prm, newton, hx=cell_lengths(basis))
 
     def _reference_forms(self):
         if self._reference is None:
@@ -159,6 +171,7 @@ class FilmSystem:
         self.fast = FastForm([Part((FILM, SINK, COUPLING), film, f.dx),
                               Part((WEB,), web, w.dx)], nP + w.N)
         self.pattern = self.fast.pattern
+        self.hx = cell_lengths(fbasis)
         self._last = _LastState()
         self._reference = None
 
@@ -166,7 +179,7 @@ class FilmSystem:
         T = self.T
         H = (T["M"] @ wv + forms.departure(T["x"], prm.beta)).reshape(np.shape(P)) \
             + self.groove
-        return {**film_coefficients(H, P, PX, PZ, prm.as_form_args(), newton),
+        return {**film_coefficients(H, P, PX, PZ, prm.as_form_args(), newton, self.hx),
                 **coupling_coefficients(P, self.width)}
 
     def values(self, u, prm, newton: bool = True) -> list[dict]:
