@@ -190,7 +190,7 @@ def test_loss_speed_chart_draws_every_kind_of_answer(tmp_path):
 def test_cli_loss_speed_prints_writes_and_resumes(calls, loss_calls, tmp_path, capsys):
     args = ["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "1.27e-3",
             "--lands", "0.5,0.9", "--loss-speed", "--loss-pitches", "1.27e-3",
-            "--loss-lands", "0.5,0.9", "--out", str(tmp_path), "--quiet"]
+            "--loss-lands", "0.5,0.9", "--out", str(tmp_path), "--quiet", "--workers", "1"]
     assert main(args) == 0
     out = capsys.readouterr().out
     assert "roller speed 20 m/s" in out and "roller speed 40 m/s" in out
@@ -215,12 +215,31 @@ def test_cli_ctrl_c_says_what_is_saved(calls, tmp_path, capsys, monkeypatch):
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]   # no lock left
 
 
+def test_map_in_worker_processes_is_the_serial_map(calls, tmp_path):
+    """Designs solved in 2 processes (the command's default on 2 cores): the same rows, in
+    the same order, as in this process, and a resumed map solves only what is missing."""
+    reference = gs.groove_map(Case(), 0.2, **GRID)
+    store = tmp_path / "m.csv"
+    seen = []
+    designs = gs.groove_map(Case(), 0.2, **GRID, store=store, workers=2,
+                            progress=lambda done, total: seen.append(done))
+    assert designs == reference and seen == list(range(1, 9))
+    assert [r["speed"] for r in csv.DictReader(store.open())] == ["20.0"] * 4 + ["40.0"] * 4
+    assert gs.groove_map(Case(), 0.2, **GRID, workers=2) == reference      # in memory
+    seen.clear()
+    assert gs.groove_map(Case(), 0.2, **GRID, store=store, workers=2,
+                         progress=lambda done, total: seen.append(done)) == reference
+    assert seen == [8]                      # resumed: nothing solved again
+    with pytest.raises(InputError, match="workers = 0"):
+        gs.groove_map(Case(), 0.2, **GRID, workers=0)
+
+
 def test_cli_help_names_the_options(capsys):
     with pytest.raises(SystemExit):
         main(["grooves", "--help"])
     text = " ".join(capsys.readouterr().out.split())     # argparse wraps the lines
     for word in ("--loss-speed", "--loss-pitches", "--loss-lands", "times 1 and 2",
-                 "continues where"):
+                 "continues where", "--workers"):
         assert word in text
 
 

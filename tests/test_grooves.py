@@ -324,3 +324,52 @@ def test_the_full_width_starts_from_the_periodic_cells_web(monkeypatch):
     assert informed["iterations"] < plain["iterations"]
     for q in ("h_center", "h_min", "mu", "contact_share"):
         assert informed[q] == pytest.approx(plain[q], rel=1e-7, abs=1e-12), q
+
+
+def test_a_narrow_webs_full_width_starts_from_the_cells_web(monkeypatch):
+    """A web too narrow for an edge strip (7 pitches of 5 mm) is solved over its full width,
+    now also from the periodic cell's web (issue 23: the groove map's narrow designs at
+    40 m/s took 26-60 iterations from the 1-D web, 17-19 from the cell's): the same answer
+    to Newton's tolerance on the same mesh, in no more steps, and the summary states the
+    change from the cell."""
+    from webfem.groove_sizing import _grooved
+    case = _grooved(Case(), 5e-3, 0.8, 0.25e-3).updated({"roller.speed": 20.0})
+    informed = fe2d.solve(case)
+    said = informed.summary.groove_domain
+    assert "too narrow for an edge strip" in said and "against the periodic cell" in said
+    assert "cell_web" in informed.diagnostics.solver
+    monkeypatch.setattr(fe2d, "_with_cell", lambda cell, solve: solve())
+    plain = fe2d.solve(case)
+    assert "cell_web" not in plain.diagnostics.solver
+    assert plain["n_dofs"] == informed["n_dofs"]
+    assert informed["iterations"] <= plain["iterations"]
+    for q in ("h_center", "h_min", "mu", "contact_share"):
+        assert informed[q] == pytest.approx(plain[q], rel=1e-7, abs=1e-12), q
+
+
+def test_the_depth_continuation_ends_at_once_from_near_the_depth():
+    """:func:`webfem.fem.continuation.geometric` from below steps by 4 and reaches 1 at once
+    when its next step would pass 0.75 (0.236 -> 1, not 0.236 -> 0.943 -> 1); a failed step
+    is still halved in log."""
+    from webfem.fem import continuation
+    from webfem.fem.outcome import SolveInfo
+
+    def path(fails=()):
+        tried = []
+
+        class Step:
+            def __init__(self, f):
+                self.f = f
+
+            def plain_newton(self, u, prm, tol, max_iter):
+                tried.append(round(self.f, 4))
+                ok = not any(abs(self.f - x) < 1e-9 for x in fails)
+                return u, SolveInfo(converged=ok, iterations=1, reason="" if ok else "test")
+
+        u, info = continuation.geometric(Step, np.zeros(1), None, 1e-9, 10,
+                                         SolveInfo(converged=False), 0.0147, "groove depth")
+        return tried, info.converged
+
+    assert path() == ([0.0147, 0.0588, 0.2352, 1.0], True)
+    tried, ok = path(fails=(1.0,))          # the depth itself never converges here
+    assert not ok and tried[:5] == [0.0147, 0.0588, 0.2352, 1.0, round(np.sqrt(0.2352), 4)]

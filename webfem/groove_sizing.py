@@ -26,6 +26,7 @@ from __future__ import annotations
 import json
 import warnings
 from dataclasses import asdict, dataclass
+from functools import partial
 from typing import Callable, Sequence
 
 from .api import solve
@@ -33,6 +34,7 @@ from .case import Case
 from .errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
 from .models.registry import make_options
 from .sweeps.keyed import run_points
+from .sweeps.workers import Processes, check_workers
 from .traction import traction_loss_speed
 
 __all__ = ["GrooveDesign", "LossSpeed", "groove_map", "best_designs", "loss_speed_map",
@@ -139,18 +141,34 @@ def _signature(kind: str, case: Case, opts, points: int, **grid) -> dict:
                for k, vs in grid.items()}}
 
 
-def _run(rows_of, n: int, store, sig, columns, keys, points, progress) -> list[dict]:
-    """Every row, through the resumable store when there is one, else in memory. A design
-    without an answer is kept too: each is solved from cold, so a re-run would only repeat
-    its failure (delete the CSV to solve everything again)."""
+def _run(rows_of, n: int, store, sig, columns, keys, points, progress,
+         workers: int = 1) -> list[dict]:
+    """Every row, through the resumable store when there is one, else in memory; in
+    ``workers`` processes when more than one (each row is solved from cold, so the rows do
+    not depend on which process solved them). A design without an answer is kept too: a
+    re-run would only repeat its failure (delete the CSV to solve everything again)."""
     if store is not None:
         return run_points(store, sig, columns, keys, points, rows_of, progress=progress,
-                          keep_failures=True)
-    out = []
-    for i in range(n):
-        out.append(rows_of(i))
+                          keep_failures=True, workers=workers)
+    out: list = [None] * n
+    finished = 0
+
+    def record(i: int, row: dict) -> None:
+        nonlocal finished
+        out[i] = row
+        finished += 1
         if progress:
-            progress(i + 1, n)
+            progress(finished, n)
+
+    if workers > 1 and n > 1:
+        pool = Processes(min(workers, n))
+        try:
+            pool.run([(i, (i,)) for i in range(n)], record, task=rows_of)
+        finally:
+            pool.close()
+    else:
+        for i in range(n):
+            record(i, rows_of(i))
     return out
 
 
@@ -159,7 +177,7 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
                land_fractions: Sequence[float] = DEFAULT_LAND_FRACTIONS,
                depths: Sequence[float] = (DEFAULT_DEPTH,), options=None,
                progress: Callable[[int, int], None] | None = None,
-               store=None) -> list[GrooveDesign]:
+               store=None, workers: int = 1) -> list[GrooveDesign]:
     """Every design (pitch x land fraction x depth) at every roller speed, solved with fe2d.
 
     Parameters
@@ -180,6 +198,10 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
         A CSV: each design's row is saved as it finishes and a re-run of the same map
         (case, grid, options; ``mu_min`` may differ: it only marks) solves only the
         missing designs. None: in memory.
+    workers : int
+        Designs solved at once, each in a process of its own (1: in this process). Each
+        design is solved from cold, so the answers do not depend on it; each process holds
+        one design's matrices (about 1.2 GB at the default grid's largest).
 
     Returns
     -------
@@ -201,31 +223,36 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
     mu_min = check_arguments(mu_min, speeds=speeds, pitches=pitches,
                              land_fractions=land_fractions, depths=depths)
     opts = make_options("fe2d", options)
+    workers = check_workers(workers)
     designs = [(s, p, p * (1.0 - f), d, f) for s in speeds for p in pitches
                for f in land_fractions for d in depths]
 
-    def row(n: int) -> dict:
-        speed, pitch, width, depth, land = designs[n]
-        c = _grooved(case, pitch, land, depth).updated({"roller.speed": speed})
-        out = {"speed": speed, "pitch": pitch, "width": width, "depth": depth,
-               "land_fraction": c.land_fraction, "converged": False}
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", ValidityWarning)
-                r = solve(c, model="fe2d", options=opts)
-        except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
-            return {**out, "solver_message": " ".join(str(err).split())}
-        return {**out, "mu": r["mu"], "h_center": r["h_center"],
-                "contact_share": r["contact_share"], "converged": True}
-
+    row = partial(_design_row, case, opts, designs)
     sig = _signature("groove map", case, opts, len(designs), speeds=speeds, pitches=pitches,
                      land_fractions=land_fractions, depths=depths)
     rows = _run(row, len(designs), store, sig, MAP_COLUMNS,
-                ("speed", "pitch", "width", "depth"), [d[:4] for d in designs], progress)
+                ("speed", "pitch", "width", "depth"), [d[:4] for d in designs], progress,
+                workers)
     return [GrooveDesign(r["speed"], r["pitch"], r["width"], r["depth"], r["land_fraction"],
                          r.get("mu"), r.get("h_center"), r.get("contact_share"),
                          bool(r["converged"]), bool(r["converged"] and r["mu"] >= mu_min),
                          r.get("solver_message") or "") for r in rows]
+
+
+def _design_row(case: Case, opts, designs, n: int) -> dict:
+    """The map's row of design ``n`` (a module function: the workers' task)."""
+    speed, pitch, width, depth, land = designs[n]
+    c = _grooved(case, pitch, land, depth).updated({"roller.speed": speed})
+    out = {"speed": speed, "pitch": pitch, "width": width, "depth": depth,
+           "land_fraction": c.land_fraction, "converged": False}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            r = solve(c, model="fe2d", options=opts)
+    except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
+        return {**out, "solver_message": " ".join(str(err).split())}
+    return {**out, "mu": r["mu"], "h_center": r["h_center"],
+            "contact_share": r["contact_share"], "converged": True}
 
 
 def best_designs(designs: Sequence[GrooveDesign]) -> dict[float, GrooveDesign | None]:
@@ -246,7 +273,7 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
                    depth: float = DEFAULT_DEPTH, speed_range=LOSS_SPEED_RANGE,
                    n_scan: int = LOSS_SCAN, xtol: float = 1e-2, options=None,
                    progress: Callable[[int, int], None] | None = None,
-                   store=None) -> list[LossSpeed]:
+                   store=None, workers: int = 1) -> list[LossSpeed]:
     """The traction-loss speed (mu falls to ``mu_min`` after its peak) of the smooth roller
     and of every groove geometry, with fe2d.
 
@@ -275,6 +302,8 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
     store : path, optional
         A CSV: each geometry is saved as it finishes and a re-run of the same table
         (case, grid, ``mu_min``, scan, options) solves only what is missing.
+    workers : int
+        Geometries searched at once, each in a process of its own (1: in this process).
 
     Returns
     -------
@@ -290,31 +319,35 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
     mu_min = check_arguments(mu_min, pitches=pitches, land_fractions=land_fractions,
                              depths=[depth])
     opts = make_options("fe2d", options)
+    workers = check_workers(workers)
     shapes = [(0.0, 0.0, 0.0, 1.0)] + [(p, p * (1.0 - f), depth, f) for p in pitches
                                        for f in land_fractions]
 
-    def row(n: int) -> dict:
-        pitch, width, d, land = shapes[n]
-        c = _grooved(case, pitch, land, d) if pitch else case.updated(
-            {"roller.groove_width": 0.0})
-        out = {"pitch": pitch, "width": width, "depth": d, "land_fraction": c.land_fraction,
-               "evaluations": 0}
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", ValidityWarning)
-                t = traction_loss_speed(c, mu_min, "fe2d", speed_range=speed_range,
-                                        n_scan=n_scan, xtol=xtol, options=opts)
-        except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
-            return {**out, "converged": False, "message": " ".join(str(err).split())}
-        return {**out, "loss_speed": t.speed, "mu_peak": t.mu_peak, "speed_peak": t.speed_peak,
-                "evaluations": t.evaluations, "converged": True, "message": t.message}
-
+    row = partial(_loss_row, case, mu_min, opts, shapes,
+                  dict(speed_range=speed_range, n_scan=n_scan, xtol=xtol))
     sig = _signature("traction-loss speed", case, opts, len(shapes), mu_min=mu_min,
                      pitches=pitches, land_fractions=land_fractions, depth=float(depth),
                      speed_range=list(speed_range), n_scan=n_scan, xtol=xtol)
     rows = _run(row, len(shapes), store, sig, LOSS_COLUMNS, ("pitch", "width", "depth"),
-                [s[:3] for s in shapes], progress)
+                [s[:3] for s in shapes], progress, workers)
     return [LossSpeed(r["pitch"], r["width"], r["depth"], r["land_fraction"],
                       r.get("loss_speed"), r.get("mu_peak"), r.get("speed_peak"),
                       int(r.get("evaluations") or 0), bool(r["converged"]),
                       r.get("message") or "") for r in rows]
+
+
+def _loss_row(case: Case, mu_min: float, opts, shapes, search: dict, n: int) -> dict:
+    """The traction-loss row of geometry ``n`` (a module function: the workers' task)."""
+    pitch, width, d, land = shapes[n]
+    c = _grooved(case, pitch, land, d) if pitch else case.updated(
+        {"roller.groove_width": 0.0})
+    out = {"pitch": pitch, "width": width, "depth": d, "land_fraction": c.land_fraction,
+           "evaluations": 0}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            t = traction_loss_speed(c, mu_min, "fe2d", options=opts, **search)
+    except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
+        return {**out, "converged": False, "message": " ".join(str(err).split())}
+    return {**out, "loss_speed": t.speed, "mu_peak": t.mu_peak, "speed_peak": t.speed_peak,
+            "evaluations": t.evaluations, "converged": True, "message": t.message}

@@ -4,6 +4,7 @@ land (contact area): a map of traction against groove pitch and land fraction, a
 
 from __future__ import annotations
 
+import os
 import sys
 import textwrap
 from pathlib import Path
@@ -15,8 +16,22 @@ from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITC
                              groove_map, loss_speed_map)
 from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
-                     add_units_argument, case_from, model_options, output_folder, print_json,
-                     speed_value)
+                     add_units_argument, case_from, model_options, output_folder, positive_int,
+                     print_json, speed_value)
+
+#: Worker processes of a map unless told (at most the machine's cores): its designs are
+#: independent cold solves, so two cores halve its time.
+DEFAULT_WORKERS = 2
+
+
+def _workers(asked: int | None) -> int:
+    if asked is not None:
+        return asked
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:       # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(DEFAULT_WORKERS, cores))
 
 
 def _floats(text: str) -> list[float]:
@@ -51,9 +66,9 @@ def add_parser(subparsers) -> None:
                f"{LOSS_SCAN} speeds over {LOSS_SPEED_RANGE[0]:g}-{LOSS_SPEED_RANGE[1]:g} m/s "
                "refined by Brent's method to 1 %, about 14 fe2d solves per geometry), and the "
                "smooth roller's: CASE_grooves_loss.csv and .png (loss speed against land "
-               "fraction, a line per pitch). On the base case the defaults take about "
-               "4.5 minutes for the map (a minute of it one design without an admissible "
-               "solution, confirmed on a finer mesh) and 5 minutes more for --loss-speed; a "
+               "fraction, a line per pitch). On the base case the defaults take about a "
+               "minute for the map (its 32 designs all answer; 0.5-1.2 minutes on a 2-core "
+               "machine shared with other work) and minutes more for --loss-speed; a "
                "design without an answer is kept, not solved again.", 88))
     add_case_arguments(p, model=False)
     p.add_argument("--opt", action="append", metavar="NAME=VALUE",
@@ -81,6 +96,12 @@ def add_parser(subparsers) -> None:
     p.add_argument("--loss-lands", default=_listed(LOSS_LAND_FRACTIONS),
                    help=f"land fractions of --loss-speed (default "
                         f"{_listed(LOSS_LAND_FRACTIONS)})")
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help="designs (with --loss-speed, geometries) solved at once, each in a "
+                        "process of its own: each is solved from cold, so the answers do "
+                        f"not depend on it (default: {DEFAULT_WORKERS} where the machine has "
+                        f"{DEFAULT_WORKERS} cores or more, else 1; each process holds up to "
+                        "about 1.2 GB)")
     p.add_argument("--json", action="store_true", help="the designs as JSON (SI units)")
     add_units_argument(p)
     p.add_argument("--out", metavar="DIR", default=".",
@@ -166,7 +187,7 @@ def run(args) -> int:
     designs = groove_map(case, args.mu_min, speeds=args.speed, pitches=lists["pitches"],
                          land_fractions=lists["lands"], depths=lists["depths"],
                          options=options, progress=Progress(args.quiet, "designs"),
-                         store=folder / f"{stem}.csv")
+                         store=folder / f"{stem}.csv", workers=_workers(args.workers))
     best = best_designs(designs)
     print(f"wrote {folder / f'{stem}.csv'}", file=sys.stderr)
     from ..io.groove_charts import groove_chart, loss_speed_chart
@@ -185,7 +206,8 @@ def run(args) -> int:
         losses = loss_speed_map(case, args.mu_min, pitches=lists["loss_pitches"],
                                 land_fractions=lists["loss_lands"], depth=lists["depths"][0],
                                 options=options, progress=Progress(args.quiet, "geometries"),
-                                store=folder / f"{stem}_loss.csv")
+                                store=folder / f"{stem}_loss.csv",
+                                workers=_workers(args.workers))
         print(f"wrote {folder / f'{stem}_loss.csv'}", file=sys.stderr)
         copy = write_in_units([x.to_dict() for x in losses], folder / f"{stem}_loss.csv",
                               args.units)

@@ -37,6 +37,13 @@ FIRST_TRY = 25
 FIRST_MIN = 1e-4
 
 
+#: A path from below ends at once when its next step by 4 would reach this factor: the last
+#: step is then at most 4 / LAST_STEP (5.3) instead of a step of 4 and one of up to 1.33
+#: (the groove depth's 0.236 -> 0.943 -> 1 on the groove map's narrow designs: one
+#: Newton solve of 6-12 steps less).
+LAST_STEP = 0.75
+
+
 def geometric(problem_at, u, prm, tol, max_iter, failed: SolveInfo, f: float, what: str):
     """Newton along a factor f stepped geometrically (by 4) to 1 from ``f``: each step starts
     from the last converged state on ``problem_at(f)``; a failed step is halved (in log f),
@@ -59,7 +66,7 @@ def geometric(problem_at, u, prm, tol, max_iter, failed: SolveInfo, f: float, wh
             u, last = v, f
             if f == 1.0:
                 return u, done.noted(f"after continuation in {what}")
-            f = max(1.0, f / 4.0) if f > 1.0 else min(1.0, 4.0 * f)
+            f = max(1.0, f / 4.0) if f > 1.0 else (1.0 if 4.0 * f >= LAST_STEP else 4.0 * f)
         else:
             if last is None and f < 1.0 and f / 4.0 >= FIRST_MIN:
                 # the first step from the problem at f = 0 (e.g. the smooth film) failed: a

@@ -5,7 +5,7 @@ With ``grooves = "auto"`` (the default) :func:`solve_grooved` solves
 
 * the **full width** of a web too narrow for an edge strip (:func:`webfem.fem.grooves.
   strip_width` in from each edge: at least 4 pitches and 8 entry lengths R eps^(1/3), 24
-  where the grooves do not vent);
+  where the grooves do not vent), started from the periodic cell's web;
 * otherwise the **periodic cell** first (cheap) and reads from it how much the grooves vent
   (their pressure against the lands') and how much of the load the film carries; from these
   :func:`webfem.fem.grooves.edge_effect` estimates how much the web's edges would change the
@@ -73,7 +73,8 @@ def domain_text(case: Case, domain: str, pattern: GroovePattern, **why) -> str:
         return text
     full = f"full width: {spans}, edge lands included"
     if why.get("narrow"):
-        return full + " (too narrow for an edge strip)"
+        return full + " (too narrow for an edge strip)" + (
+            f"; {_change(why['cell'], why['answer'])}" if why.get("cell") is not None else "")
     return full + (f"; {said}" if said else "") + (
         f"; {_change(why['cell'], why['answer'])}" if why.get("cell") is not None else "")
 
@@ -99,14 +100,19 @@ def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
     may start the strip's or the full width's solve). The result's ``groove_domain`` says
     which and why; its ``solve_time_s`` includes the periodic cell's solve."""
     t0 = time.perf_counter()
-    if choose_domain("auto", pattern, case.lam) == "full" and \
-            choose_domain("auto", pattern, case.lam, vent=1.0) == "full":
-        r = solve(options.replace(grooves="full"), True)
-        return _said(r, domain_text(case, "full", pattern, narrow=True), t0)
+    narrow = choose_domain("auto", pattern, case.lam) == "full" and \
+        choose_domain("auto", pattern, case.lam, vent=1.0) == "full"
     try:
+        # a narrow web's full width too starts from the cell's web (issue 23: on the groove
+        # map's narrow designs at 40 m/s the direct Newton from the 1-D web failed and the
+        # depth continuation took 8-13 s; from the cell's web 2-5 s, the same answers)
         cell = solve(options.replace(grooves="cell"), False)
     except NoAdmissibleSolution:
         cell = None           # the strip or the full width decide
+    if narrow:
+        r = solve(options.replace(grooves="full"), True, cell)
+        return _said(r, domain_text(case, "full", pattern, narrow=True, cell=_converged(cell),
+                                    answer=r), t0)
     why = {"vent": 0.0}
     if cell is not None and cell.summary.converged:
         vent = min(max(venting(case, cell), 0.0), 1.0)
@@ -124,6 +130,10 @@ def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
                               else None), True, cell)
     return _said(r, domain_text(case, domain, pattern, width=width, cell=cell, answer=r,
                                 **why), t0)
+
+
+def _converged(cell: Result | None) -> Result | None:
+    return cell if cell is not None and cell.summary.converged else None
 
 
 def _said(r: Result, text: str, t0: float) -> Result:

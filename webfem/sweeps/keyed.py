@@ -27,6 +27,7 @@ from .runner import SweepInterrupted
 from .lock import SweepLock
 from .store import Store
 from .table import typed
+from .workers import Processes
 
 __all__ = ["run_points", "exact_key"]
 
@@ -39,7 +40,7 @@ def exact_key(values) -> tuple[str, ...]:
 def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequence[str],
                points: Sequence[Sequence[float]], solve: Callable[[int], dict], *,
                progress: Callable[[int, int], None] | None = None,
-               keep_failures: bool = False) -> list[dict]:
+               keep_failures: bool = False, workers: int = 1) -> list[dict]:
     """Solve (or resume) every point, saving each row as it finishes.
 
     Parameters
@@ -60,6 +61,10 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     keep_failures : bool
         False: a re-run solves the points that did not converge again (as a sweep does);
         True: their rows are kept (points solved from cold fail again the same way).
+    workers : int
+        1: the points in order in this process; N > 1: in a pool of N local processes
+        (``solve`` must then be picklable, and each point independent of the others), each
+        row saved as it arrives (the CSV is in point order at the end).
 
     Returns
     -------
@@ -92,15 +97,25 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
         finished = len(done)
         if progress and done:
             progress(finished, total)
-        for n in range(total):
-            if n in done:
-                continue
-            row = solve(n)
+        todo = [n for n in range(total) if n not in done]
+
+        def record(n: int, row: dict) -> None:
+            nonlocal saved, finished
             store.append(row)
             saved += bool(row["converged"] or keep_failures)
             finished += 1
             if progress:
                 progress(finished, total)
+
+        if workers > 1 and len(todo) > 1:
+            pool = Processes(min(workers, len(todo)))
+            try:
+                pool.run([(n, (n,)) for n in todo], record, task=solve)
+            finally:
+                pool.close()
+        else:
+            for n in todo:
+                record(n, solve(n))
         return typed(store.finish(keys))
     except KeyboardInterrupt as err:
         raise SweepInterrupted(saved, len(points), csv_path) from err
