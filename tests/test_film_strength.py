@@ -127,3 +127,9 @@ def test_one_mm_web_on_the_base_roller_answers():
     scale = case.roller.radius * case.eps ** (2.0 / 3.0)
     assert 1.8 * scale < s.compression < 2.3 * scale
     assert max(s.error_h_min, s.error_mu) < 0.05
+    # the mesh with every cell halved (29,487 unknowns) does not converge from this answer,
+    # so its estimate (the change from the coarser mesh, h_min 0.9 %) is unconfirmed; the
+    # same film in 1-D on the same x nodes moves 5.6 % from 80 cells to 320, so the result
+    # must say that the change may understate the error
+    assert "unconfirmed" in s.error_basis
+    assert any("could not be confirmed" in w for w in s.warnings)
