@@ -230,8 +230,9 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
             info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
                                 "history": list(info.history) + list(finer.history),
                                 "reason": f"{finer.reason} (on the mesh the error estimate "
-                                          f"asked for, {rounds} bisection"
-                                          f"{'s' if rounds > 1 else ''} of every cell)"})
+                                          f"asked for, " + (mesh_error.refined or
+                                          f"{rounds} bisection{'s' if rounds > 1 else ''} "
+                                          "of every cell") + ")"})
     result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
                           options, start, mesh_error)
     crushed = None if result.summary.converged else through_thickness(case, prm)
