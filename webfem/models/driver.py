@@ -230,9 +230,10 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
             info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
                                 "history": list(info.history) + list(finer.history),
                                 "reason": f"{finer.reason} (on the mesh the error estimate "
-                                          f"asked for, {rounds} bisection"
-                                          f"{'s' if rounds > 1 else ''} of the cells "
-                                          "along x, across the width or both)"})
+                                          f"asked for, " + (mesh_error.refined or
+                                          f"{rounds} bisection{'s' if rounds > 1 else ''} "
+                                          "of the cells along x, across the width or both")
+                                          + ")"})
     result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
                           options, start, mesh_error)
     crushed = None if result.summary.converged else through_thickness(case, prm)
