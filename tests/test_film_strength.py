@@ -122,7 +122,7 @@ def test_one_mm_web_on_the_base_roller_answers():
 
     Its error estimate: the 7,705-unknown answer changed 0.9 % (h_min) and 1.5 % (mu) from
     its coarser mesh, but the mesh with every cell halved does not converge from it; the one
-    with its cells along x quartered (640 cells, 58,927 unknowns) does, 4.4 % and 7.3 %
+    with its cells along x quartered (640 cells; 30,745 unknowns with the width's cells kept, as its error lies along x) does, 4.4 % and 7.3 %
     away, and is the answer. Those changes bound its error: fe1d (the same film without the edge leakage,
     2,531 unknowns) is 0.1 % and 0.25 % from it. 50-100 s."""
     case = base(**{"web.thickness": 1e-3})

@@ -133,7 +133,7 @@ def test_an_unconfirmed_estimate_says_so(monkeypatch):
 def test_the_cells_along_x_quartered_where_halving_them_fails(monkeypatch):
     """1 mm board on the base roller (issue 22): the mesh with every cell halved (29,487
     unknowns) does not converge from the 7,705-unknown answer, the one with its cells along x
-    quartered instead (58,927) does; that is then the answer, its stated errors the change
+    quartered instead does; that is then the answer, its stated errors the change
     from the mesh with cells four times as long along x, and it is not refined further.
     Forced here on the base case by refusing the first finer answer only."""
     import webfem.models.mesh_error as mesh_error

@@ -184,11 +184,15 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
             # the bisected direction's error is the change it made; the other's stays
             parts = (change, parts[1]) if along_x else (parts[0], change)
             out.errors = _summed(*parts)
-            out.basis = (f"changes from the meshes with cells twice as long along x and "
-                         f"across the width, summed (the last bisection "
-                         f"{'along x' if along_x else 'across'}"
-                         f"{'' if times == 'twice' else ', twice'}: {problem.n_dofs:,} "
-                         f"against {fine.n_dofs:,} unknowns)")
+            if times == "twice":
+                out.basis = (f"changes from the meshes with cells twice as long along x and "
+                             f"across the width, summed (the last bisection "
+                             f"{'along x' if along_x else 'across'}: {problem.n_dofs:,} "
+                             f"against {fine.n_dofs:,} unknowns)")
+            else:
+                out.basis = (f"changes from the mesh with cells four times as long along x "
+                             f"({problem.n_dofs:,} against {fine.n_dofs:,} unknowns) and from "
+                             f"the one with cells twice as long across the width, summed")
         if times != "twice":
             out.refined = "its cells along x quartered instead of halved"
             out.notes.append(_quartered_note(out, problem.n_dofs, n_halved, fine.n_dofs,
