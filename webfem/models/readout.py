@@ -14,10 +14,10 @@ from ..case import Case
 from ..fem import forms
 from ..fem.scaling import FoilParameters
 from ..physics.effects import traction_summary
-from ..physics.friction import friction_for
+from ..physics.friction import friction_for, jump_gaps
 from .refine import minimum, wrap_samples
 
-__all__ = ["ReadOut", "read_out", "pressure_and_gradient", "READ_QUANTITIES"]
+__all__ = ["ReadOut", "read_out", "jump_crossings", "pressure_and_gradient", "READ_QUANTITIES"]
 
 #: The quantities whose error every result states (``error_<name>`` summary keys).
 READ_QUANTITIES = ("h_center", "h_min", "mu", "contact_share")
@@ -56,14 +56,61 @@ class ReadOut:
 
 def pressure_and_gradient(case: Case, problem, u, X) -> tuple[np.ndarray, np.ndarray]:
     """Absolute (width-averaged) film pressure [Pa] and its x-derivative [Pa/m] at scaled
-    points X inside cells (a central difference well inside the cell: the pressure is a
-    polynomial there)."""
-    delta = 1e-7
-    P = problem.pressure(u, np.concatenate([X, X - delta, X + delta]))
+    points X inside cells: the five-point central difference, exact for a polynomial of
+    degree 4, over steps inside the point's cell (the pressure is a polynomial there) of
+    up to 1e-3 (scaled). A point on a node: steps of 1e-7 across it. Why not 1e-7 steps
+    throughout: the pressure's values carry noise of about 1e-10 (scaled; base case), which
+    made dp/dx 1e-3 (relative) noisy, enough for points 5e-13 apart to read mu 6e-9 apart."""
+    X = np.asarray(X, float)
+    nodes = np.asarray(problem.X, float)
+    j = np.clip(np.searchsorted(nodes, X), 1, nodes.size - 1)
+    room = np.minimum(X - nodes[j - 1], nodes[j] - X)
+    delta = np.where(room > 0.0, np.minimum(1e-3, 0.45 * room), 1e-7)
+    P = problem.pressure(u, np.concatenate([X, X - delta, X + delta, X - 2 * delta,
+                                            X + 2 * delta]))
     n = len(X)
-    dPdX = (P[2 * n:] - P[n:2 * n]) / (2.0 * delta)
+    dPdX = (8.0 * (P[2 * n:3 * n] - P[n:2 * n]) - (P[4 * n:] - P[3 * n:4 * n])) / \
+        (12.0 * delta)
     return (case.air.ambient_pressure + P[:n] * case.p_bar,
             dPdX * case.p_bar / case.x_scale)
+
+
+def jump_crossings(problem, u, prm: FoilParameters, levels, n: int = 8) -> np.ndarray:
+    """The points inside the wrap where the scaled gap crosses one of ``levels``
+    (:func:`~webfem.physics.friction.jump_gaps` scaled: where the local friction or the
+    regime jumps), to rounding. The wrap average's Gauss rule integrates a jump inside a cell
+    to first order in the cell's length only: on the base case with the paper's physics
+    (mu's chi_c drops from 0.11 to 0 at 3 sigma) level 1 and 2 shared one 0.49-long cell
+    across it and both read mu 4.3e-4 (relative) high, the adapted mesh 5.7e-5 low. The gap
+    is sampled at the cells' nodes and ``n`` points inside each; a sign change between
+    neighbours is narrowed to the crossing."""
+    e = 0.5 * prm.beta
+    X = problem.X
+    inner = X[(X >= -e - 1e-12) & (X <= e + 1e-12)]
+    s = np.linspace(0.0, 1.0, n + 2)[:-1]
+    xs = np.append((inner[:-1, None] + np.diff(inner)[:, None] * s[None, :]).ravel(),
+                   inner[-1])
+    H = problem.gap(u, prm, xs)
+    found = []
+    for level in np.atleast_1d(levels):
+        above = H > level
+        i = np.nonzero(above[1:] != above[:-1])[0]
+        if i.size == 0:
+            continue
+        lo, hi, Hlo, Hhi = xs[i], xs[i + 1], H[i], H[i + 1]
+        t = np.linspace(0.0, 1.0, 17)
+        for _ in range(4):      # each round cuts the brackets 16-fold: 6.6e4 in all
+            x = lo[:, None] + (hi - lo)[:, None] * t[None, :]
+            Hx = problem.gap(u, prm, x.ravel()).reshape(x.shape)
+            Hx[:, 0], Hx[:, -1] = Hlo, Hhi
+            k = np.argmax((Hx[:, 1:] > level) != (Hx[:, :1] > level), axis=1)
+            r = np.arange(k.size)
+            lo, hi, Hlo, Hhi = x[r, k], x[r, k + 1], Hx[r, k], Hx[r, k + 1]
+        # the gap is smooth inside a bracket this short: linear to rounding
+        with np.errstate(all="ignore"):
+            w = np.clip(np.nan_to_num((level - Hlo) / (Hhi - Hlo), nan=0.5), 0.0, 1.0)
+        found.append(lo + w * (hi - lo))
+    return np.sort(np.concatenate(found)) if found else np.empty(0)
 
 
 def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
@@ -84,7 +131,9 @@ def read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
 
 def _read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
     Hs = case.h_scale
-    pts, wts = wrap_samples(problem.X, prm.beta)
+    pts, wts = wrap_samples(problem.X, prm.beta,
+                            cuts=jump_crossings(problem, u, prm, np.array(jump_gaps(case, True))
+                                                / Hs))
     h = problem.gap(u, prm, pts) * Hs
     p, dpdx = pressure_and_gradient(case, problem, u, pts)
     loc = friction_for(case, h, resting=True, p=p, dpdx=dpdx)

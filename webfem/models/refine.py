@@ -23,10 +23,15 @@ def minimum(problem, u, prm) -> tuple[float, float]:
     return float(Hs[j]), float(Xs[j])
 
 
-def wrap_samples(X: np.ndarray, beta: float, n: int = 8):
-    """Gauss points and weights over the wrap cells (nodes sit on the wrap edges)."""
+def wrap_samples(X: np.ndarray, beta: float, n: int = 8, cuts=()):
+    """Gauss points and weights over the wrap cells (nodes sit on the wrap edges), the cells
+    split at ``cuts`` (points inside the wrap where the integrand jumps)."""
     e = 0.5 * beta
     inner = X[(X >= -e - 1e-12) & (X <= e + 1e-12)]
+    cuts = np.asarray(cuts, float).ravel()
+    cuts = cuts[(cuts > inner[0]) & (cuts < inner[-1])]
+    if cuts.size:
+        inner = np.unique(np.concatenate([inner, cuts]))
     g, gw = leggauss(n)
     a, b = inner[:-1, None], inner[1:, None]
     pts = 0.5 * (a + b) + 0.5 * (b - a) * g[None, :]

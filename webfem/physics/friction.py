@@ -35,7 +35,7 @@ from .contact import (RESTING_SHARE, contact_gap, contact_pressure, load_ratio, 
                       resting_gap)
 from .roughness import mean_gap, shear_factor
 
-__all__ = ["friction_for", "load_friction", "wrap_average_loads", "SLIP_COEFFICIENT", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
+__all__ = ["friction_for", "jump_gaps", "load_friction", "wrap_average_loads", "SLIP_COEFFICIENT", "mu_asperity", "mu_film", "local_friction", "wrap_average_linear_gap",
            "wrap_average_numeric",
            "delta_T_from_mu", "mu_from_delta_T", "valley_shear_bound"]
 
@@ -172,6 +172,20 @@ def friction_for(case, h, resting: bool = False, p=None, dpdx=None) -> dict:
                           sigma=case.sigma, t=w.thickness, mu_cc=case.friction.mu_cc,
                           C=case.friction.speed_constant, variant=case.friction_variant,
                           distribution=case.friction.distribution, resting=resting)
+
+
+def jump_gaps(case, resting: bool = False) -> tuple[float, ...]:
+    """The gaps [m] at which :func:`friction_for` (same ``case`` and ``resting``) jumps: the
+    edge of the boundary regime (h_c, or where contact carries the resting share), 3 sigma
+    and 0 (a landed web). ``mu`` jumps there with the paper's Eqs. 13 and 29 (``variant =
+    "paper"``; chi_c drops from about 0.1 to 0 at 3 sigma); the regime codes jump there with
+    every variant. A wrap average whose quadrature cells straddle one of them converges
+    only at first order in the cell's length; splitting the cells where the gap crosses
+    them makes it exact to the quadrature's order (:func:`webfem.models.readout.read_out`)."""
+    w = case.web
+    edge = float(resting_gap(case.p_bar, w.modulus_thickness, case.sigma, w.thickness,
+                             case.friction.distribution, RESTING_SHARE if resting else 1.0))
+    return tuple(sorted({0.0, edge, 3.0 * float(case.sigma)}))
 
 
 #: Burgdorfer's first-order slip coefficient a (full accommodation of the air molecules).
