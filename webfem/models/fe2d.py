@@ -106,6 +106,29 @@ COARSE_ROUNDS = 3
 LINES_KEPT = 2
 
 
+def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what):
+    """The coarse mesh solved from ``u0`` and bisected where its own 2-D gap asks for cells
+    half as fine as the thin-film rule's (:func:`continued.planned_nodes` with
+    ``coarser=2``), then solved again, until the rule asks for nothing more
+    (:data:`COARSE_ROUNDS` at most). ``what`` names the stage. Returns ``(coarse, state,
+    info)``, or None where a solve fails or ends inadmissible, or the rounds run out."""
+    info = None
+    for _ in range(COARSE_ROUNDS):
+        with stage(f"{NAME} newton on {what}, {coarse.n_dofs:,} unknowns"):
+            uc, step = coarse.plain_newton(u0, prm, options.tol, options.max_iter,
+                                           DIRECT_STEPS)
+        info = step if info is None else step.after(info)
+        if not info.converged or admissibility(case, coarse, uc, prm):
+            return None
+        X = continued.planned_nodes(coarse.X, prm, options,
+                                    lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
+        if X.size == coarse.X.size:
+            return coarse, uc, info
+        finer = coarse.variant(X=X)
+        u0, coarse = coarse.transfer(uc, prm, finer), finer
+    return None
+
+
 class _Film(Discretisation):
     """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
     the start and the X mesh, already refined where the film is thin."""
@@ -205,22 +228,11 @@ class _Film(Discretisation):
             return None
         coarse = FoilBearing2D(Xc, Zc, order=options.order)
         coarse.line_start, coarse.direct = (p1, u1), True
-        uc, info = coarse.start_from_line(p1, u1, prm), None
-        for _ in range(COARSE_ROUNDS):
-            with stage(f"{NAME} newton on a coarse mesh first, {coarse.n_dofs:,} unknowns"):
-                uc, step = coarse.plain_newton(uc, prm, options.tol, options.max_iter,
-                                               DIRECT_STEPS)
-            info = step if info is None else step.after(info)
-            if not info.converged or admissibility(case, coarse, uc, prm):
-                return None
-            X = continued.planned_nodes(coarse.X, prm, options,
-                                        lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
-            if X.size == coarse.X.size:
-                break
-            finer = coarse.variant(X=X)
-            uc, coarse = coarse.transfer(uc, prm, finer), finer
-        else:
+        settled = _coarse_rounds(case, prm, options, coarse,
+                                 coarse.start_from_line(p1, u1, prm), "a coarse mesh first")
+        if settled is None:
             return None
+        coarse, uc, info = settled
         fine = coarse.variant(X=bisected_nodes(coarse.X), Z=Z)
         if not np.array_equal(coarser_nodes(fine.X, (-e, e)), coarse.X) or \
                 not np.array_equal(coarser_nodes(fine.Z), coarse.Z):
@@ -324,25 +336,11 @@ class _Film(Discretisation):
         uc0[coarse.fixed] = 0.0
         if not np.all(np.isfinite(uc0)):
             return None
-        info = None
-        for _ in range(COARSE_ROUNDS):
-            with stage(f"{NAME} newton on the coarser mesh first, {coarse.n_dofs:,} unknowns"):
-                uc, step = coarse.plain_newton(uc0, prm, options.tol, options.max_iter,
-                                               DIRECT_STEPS)
-            info = step if info is None else step.after(info)
-            if not info.converged or admissibility(case, coarse, uc, prm):
-                return None
-            # the mesh decided before the fine solve, as a cold start's (:meth:`_coarse_first`):
-            # the coarse mesh bisected where its own gap asks for cells half as fine as the
-            # thin-film rule's, solved again, the fine mesh that one bisected
-            X = continued.planned_nodes(coarse.X, prm, options,
-                                        lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
-            if X.size == coarse.X.size:
-                break
-            finer = coarse.variant(X=X)
-            uc0, coarse = coarse.transfer(uc, prm, finer), finer
-        else:
+        # the mesh decided before the fine solve, as a cold start's (:meth:`_coarse_first`)
+        settled = _coarse_rounds(case, prm, options, coarse, uc0, "the coarser mesh first")
+        if settled is None:
             return None
+        coarse, uc, info = settled
         # the previous point's fine-minus-coarse difference, on this point's fine mesh
         detail = before - coarse_first.transfer(up, prm, fine)
         if coarse is not coarse_first:

@@ -160,7 +160,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
         Zf = bisected_nodes(Z) if across else Z
         fine, uf, info, why = _solved_on(disc, case, problem, u, prm, options, iterate, out,
                                          Xf, Zf)
-        times = "twice"
+        quartered = False
         if why and along_x and problem.n_dofs * growth * 2 <= MAX_DOFS:
             # the finer mesh along x from the same answer: 1 mm board resting on the base
             # roller does not converge with its 160 cells along x halved (nor do fe1d's 160
@@ -169,36 +169,35 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
                                                     iterate, out, bisected_nodes(Xf), Zf)
             if quarter is not None and not why_q:
                 n_halved = fine.n_dofs
-                fine, uf, info, why, times = quarter, uq, info_q, None, "four times"
+                fine, uf, info, why, quartered = quarter, uq, info_q, None, True
         if why:
             _unconfirmed(out, fine.n_dofs, why, options.error_tol)
             break
         finer = read_out(case, fine, uf, prm)
         change = errors_between(case, finer, here)
-        along = "" if times == "twice" else " along x"
         if parts is None:
             out.errors = change
-            out.basis = (f"change from the mesh with cells {times} as long{along} "
+            out.basis = (f"change from the mesh with cells "
+                         f"{'four times as long along x' if quartered else 'twice as long'} "
                          f"({problem.n_dofs:,} against {fine.n_dofs:,} unknowns)")
         else:
             # the bisected direction's error is the change it made; the other's stays
             parts = (change, parts[1]) if along_x else (parts[0], change)
             out.errors = _summed(*parts)
-            if times == "twice":
+            if quartered:
+                out.basis = (f"changes from the mesh with cells four times as long along x "
+                             f"({problem.n_dofs:,} against {fine.n_dofs:,} unknowns) and from "
+                             f"the one with cells twice as long across the width, summed")
+            else:
                 out.basis = (f"changes from the meshes with cells twice as long along x and "
                              f"across the width, summed (the last bisection "
                              f"{'along x' if along_x else 'across'}: {problem.n_dofs:,} "
                              f"against {fine.n_dofs:,} unknowns)")
-            else:
-                out.basis = (f"changes from the mesh with cells four times as long along x "
-                             f"({problem.n_dofs:,} against {fine.n_dofs:,} unknowns) and from "
-                             f"the one with cells twice as long across the width, summed")
-        if times != "twice":
+        # the restart's coarser state is that of cells twice as long (None: not solved)
+        if quartered:
             out.refined = "its cells along x quartered instead of halved"
             out.notes.append(_quartered_note(out, problem.n_dofs, n_halved, fine.n_dofs,
                                              options.error_tol))
-        # the restart's coarser state is that of cells twice as long (None: not solved)
-        if times != "twice":
             out.coarse = None
         elif parts is None:
             out.coarse = (problem, u)
@@ -209,7 +208,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
                           and not across and out.rounds == 0 else None)
         problem, u, here, Z, last_info = fine, uf, finer, getattr(fine, "Z", None), info
         out.rounds += 1
-        if times != "twice":
+        if quartered:
             # not refined further: the next halving is of the kind that failed, and on 1 mm
             # board it is 0.24 M unknowns, stopped after 2 min at 7 GB without an answer
             break
