@@ -11,6 +11,7 @@ import pytest
 
 import webfem
 from webfem.models.continued import MESH_SLACK
+from webfem.models.options import FE2DOptions
 from webfem.models.readout import error_scale
 from webfem.fem.outcome import SolveInfo
 from webfem.api import solve_along
@@ -189,6 +190,22 @@ def test_coarse_user_mesh_is_flagged_with_an_error_estimate():
     # the graded default mesh gets no such warning
     assert not any(w.startswith("user mesh") for w in webfem.solve(BASE, model="fe1d")
                    .summary.warnings)
+
+
+def test_fe2d_takes_user_nodes():
+    """fe2d with the API's ``nodes``: it solves on them (the options are hashed to key the
+    kept 1-D start, and an array there raised TypeError), states its errors, and agrees
+    with the default mesh's answer within the two stated errors."""
+    default = webfem.solve(BASE, model="fe2d")
+    X = np.linspace(-60.0, 60.0, 481)
+    r = webfem.solve(BASE, model="fe2d", nodes=X)
+    assert r.summary.mesh.startswith("half width") and "user" in r.summary.mesh
+    for q in ("h_center", "h_min", "mu"):
+        assert r[f"error_{q}"] is not None
+        assert abs(r[q] - default[q]) / error_scale(BASE, q, r[q]) <= \
+            r[f"error_{q}"] + default[f"error_{q}"]
+    assert FE2DOptions(nodes=X) == FE2DOptions(nodes=list(X))
+    assert hash(FE2DOptions(nodes=X)) == hash(FE2DOptions(nodes=X.copy()))
 
 
 def test_json_is_strict():

@@ -92,7 +92,9 @@ class Options(Validated):
             raise cls.invalid(name, value, "is not valid", meta) from None
         if arr.size < 3 or not np.all(np.isfinite(arr)):
             raise cls.invalid(name, value, "has fewer than 3 finite nodes", meta)
-        return arr
+        # a tuple, not the array: options are frozen and hashed (fe2d keys its kept 1-D
+        # starts on them) and compared
+        return tuple(arr.tolist())
 
     # -- construction ---------------------------------------------------------------------
     @classmethod
