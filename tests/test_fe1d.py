@@ -5,6 +5,7 @@ bending Dn = 1 lowers H0 by about 5 %) and ../shared/reference/foil_bearing_1d_p
 (beta = 30, entry/exit 80 units, converged to about 1e-7).
 """
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -158,6 +159,7 @@ def test_continuation_steps_when_the_jump_fails(monkeypatch):
     same solution."""
     pb, prm = _continued_problem()
     u_jump, _ = pb.solve_newton(pb.initial_guess(prm), prm)
+    pb, prm = _continued_problem()      # a new problem: the path taken is kept on the old
     newton, calls = pb.newton, []
 
     def failing_jump(u0, p, tol, max_iter, rows=None):
@@ -173,6 +175,26 @@ def test_continuation_steps_when_the_jump_fails(monkeypatch):
     u, info = pb.solve_newton(pb.initial_guess(prm), prm)
     assert info.converged and info.steps == [0.0, 0.25, 0.75, 1.0]
     np.testing.assert_allclose(u, u_jump, rtol=0, atol=1e-8 * np.max(np.abs(u_jump)))
+
+
+def test_continued_path_is_taken_once_per_problem(monkeypatch):
+    """The continuation from the cold start is a pure function of the mesh, the parameters
+    and Newton's tolerance and limit: a second call on the same problem (the driver's safe
+    start after the direct start fell back to it) returns the same state and account
+    without a Newton step; other parameters take the path afresh."""
+    pb, prm = _continued_problem()
+    u1, info1 = pb.solve_continued(prm)
+    steps = []
+    newton = pb.newton
+    monkeypatch.setattr(pb, "newton", lambda *a, **k: steps.append(1) or newton(*a, **k))
+    u2, info2 = pb.solve_continued(prm)
+    assert not steps and np.array_equal(u1, u2) and u1 is not u2
+    assert (info2.iterations, info2.steps, info2.reason) == \
+        (info1.iterations, info1.steps, info1.reason)
+    info2.converged = False                 # the caller's copy: the kept one is untouched
+    assert pb.solve_continued(prm)[1].converged
+    pb.solve_continued(dataclasses.replace(prm, K=1.01 * prm.K))
+    assert steps
 
 
 @pytest.mark.parametrize("speed", [0.5, 40.0])
