@@ -19,7 +19,9 @@ first:
 4. **fe2d** (about 0.3 s), the reference.
 
 With ``quantity = "all"`` (the default) each of the four errors must be within ``tol``;
-otherwise only the named one. The result is the chosen model's, with ``model = "auto"``,
+otherwise only the named one. The FE models refine their meshes until their mesh error
+estimates meet :data:`~webfem.models.options.MESH_SHARE` (a quarter) of ``tol``, unless
+``error_tol`` is given. The result is the chosen model's, with ``model = "auto"``,
 ``model_used``, ``estimated_error`` (the largest judged error), ``why`` and the chosen
 model's ``error_*`` keys.
 """
