@@ -84,6 +84,13 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
                  "--quiet"]) == 0
     again = json.loads(capsys.readouterr().out)
     assert again["train"] == report["train"] and again["holdout"] == report["holdout"]
+    # more points extend the campaign: the six rows are kept as they were, one is solved
+    before = (store / "campaign.csv").read_text().splitlines()
+    assert main(["fit", "build", "--points", "7", "--store", str(store), "--timeout", "30",
+                 "--json", "--quiet"]) == 0
+    grown = json.loads(capsys.readouterr().out)
+    assert grown["train"] + grown["holdout"] + grown["failed"] == 7
+    assert (store / "campaign.csv").read_text().splitlines()[:7] == before
 
 
 def test_drift_the_current_fe2d_reproduces_the_hold_out_answers():

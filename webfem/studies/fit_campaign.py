@@ -179,9 +179,11 @@ def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
         raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
     G = design(n, seed)
     from .. import __version__
-    sig = {"table": "fit-campaign", "parameter": "groups", "model": "fe2d", "points": n,
-           "seed": seed, "webfem": __version__, "options": options,
-           "domain": [[float(a), float(b)] for a, b in zip(*box())]}
+    # not the number of points: the design's first n points are those of any longer one,
+    # so a run with more points extends the campaign (it used to start the table afresh)
+    sig = {"table": "fit-campaign", "parameter": "groups", "model": "fe2d",
+           "design": "scrambled Sobol prefix", "seed": seed, "webfem": __version__,
+           "options": options, "domain": [[float(a), float(b)] for a, b in zip(*box())]}
     # the key is the design index: the same seed gives the same point
     return run_points(out_csv, sig, COLUMNS,
                       ("n",), [(float(i),) for i in range(n)],

@@ -48,8 +48,10 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     csv_path : path
         The table; beside it ``NAME.sweep.json`` (``sig``) and, while running, the lock.
     sig : dict
-        What makes two runs the same table (JSON-ready), with ``model``, ``parameter`` and
-        ``points`` for the lock's message.
+        What makes two runs the same table (JSON-ready), with ``model`` and ``parameter``
+        for the lock's message. A run whose ``sig`` differs starts the table afresh: leave
+        out of it what may change between runs whose rows stay valid (the fit campaign's
+        number of design points: more extend the same design).
     columns, key_columns : sequences of str
         The CSV's columns (one of them ``converged``) and those identifying a point.
     points : sequence of sequences of float
@@ -86,7 +88,7 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
                   row_key=lambda row: exact_key(row[k] for k in key_columns),
                   keep_failures=keep_failures)
     store.check_paths()
-    lock = SweepLock(csv_path, sig)
+    lock = SweepLock(csv_path, sig, len(points))
     saved = 0
     try:
         lock.acquire()

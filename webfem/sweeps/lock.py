@@ -37,15 +37,15 @@ class SweepLock:
     Raises :class:`~webfem.errors.InputError` naming the sweep that holds it.
     """
 
-    def __init__(self, csv_path: Path, sig: dict):
+    def __init__(self, csv_path: Path, sig: dict, points: int | None = None):
         self.path = csv_path.with_name(f".{csv_path.name}.lock")
         self.csv_path = csv_path
         self.hash = signature_hash(sig)
         self.info = {"pid": os.getpid(), "host": socket.gethostname(), "time": time.time(),
                      "started": time.strftime("%Y-%m-%d %H:%M:%S"), "signature": self.hash,
                      "model": sig["model"], "parameter": sig["parameter"],
-                     "points": sig["points"] if "points" in sig
-                     else len(sig["values"]) * len(sig["series"]),
+                     "points": points if points is not None else sig["points"]
+                     if "points" in sig else len(sig["values"]) * len(sig["series"]),
                      "token": uuid.uuid4().hex}
         self.held = False
 
