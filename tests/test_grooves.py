@@ -373,3 +373,49 @@ def test_the_depth_continuation_ends_at_once_from_near_the_depth():
     assert path() == ([0.0147, 0.0588, 0.2352, 1.0], True)
     tried, ok = path(fails=(1.0,))          # the depth itself never converges here
     assert not ok and tried[:5] == [0.0147, 0.0588, 0.2352, 1.0, round(np.sqrt(0.2352), 4)]
+
+
+#: Point #55 of the envelope benchmark (board held on a grooved roller, 11 mm wide): the
+#: web rests, on the periodic cell and on the full width alike.
+RESTING_NARROW = dict(R=0.10417931429563321, T=259.54367931018567, B=19.971934289721432,
+                      L=0.011333699416420562, U_r=16.735600944979296, pitch=0.0005058900622344862,
+                      width=0.00012459930394153246, depth=0.00026850922077213283)
+
+
+def _resting_narrow():
+    from conftest import CASE_DIR
+    from webfem import load_case
+    p = RESTING_NARROW
+    return load_case(CASE_DIR / "board.toml").updated({
+        "roller.radius": p["R"], "web.tension": p["T"], "wrap.angle_deg": p["B"],
+        "web.width": p["L"], "roller.speed": p["U_r"], "web.speed": 0.0,
+        "roller.drag_torque": 0.0, "roller.inertia": 0.0, "web.acceleration": 0.0,
+        "roller.groove_pitch": p["pitch"], "roller.groove_width": p["width"],
+        "roller.groove_depth": p["depth"]})
+
+
+def test_a_resting_full_width_is_not_checked_again_after_its_checked_cell():
+    """The full width of a narrow web started from a periodic cell whose resting answer was
+    checked against its safe start (the depth continuation from the smooth film) is not
+    checked again: the edges only vent the film. On envelope point #55 that check took
+    11-33 s of 17-45 and kept the answer; the answer with it is the one without."""
+    from webfem.models.driver import REST_CHECKED
+    case = _resting_narrow()
+    r = fe2d.solve(case)
+    solver = r.diagnostics.solver
+    assert r["h_min"] < 0.0 and "too narrow" in r.summary.groove_domain
+    assert solver.get("cell_web") and "periodic cell" in solver.get(REST_CHECKED, "")
+
+
+@pytest.mark.slow
+def test_the_skipped_rest_check_would_have_kept_the_answer(monkeypatch):
+    """What :func:`test_a_resting_full_width_is_not_checked_again_after_its_checked_cell`
+    skips, run: the full width's own check keeps the same answer, to the bit (30-40 s)."""
+    case = _resting_narrow()
+    skipped = fe2d.solve(case)
+    monkeypatch.setattr(fe2d, "REST_CHECKED", "not_the_drivers_key")
+    checked = fe2d.solve(case)
+    assert checked.diagnostics.solver.get("rest_checked") == \
+        "its safe start rests as low or lower"
+    for q in ("h_center", "h_min", "mu", "contact_share"):
+        assert skipped[q] == checked[q], q

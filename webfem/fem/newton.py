@@ -295,6 +295,9 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                     monitor(it, norm)
                 chords += 1
                 continue
+        # the last factorisation and Jacobian let go before the new ones are built: held
+        # through them, they set the peak (a 390,819-unknown grooved strip: 3.4 GB)
+        last = Jm = None
         try:
             Jm = J(u)
             last = (solver or SOLVER).factor(Jm, free)

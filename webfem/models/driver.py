@@ -30,13 +30,13 @@ from ..physics.validity import thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Result, State
 from .admissible import admissibility, no_admissible_solution, through_thickness
-from .mesh_error import MeshError, estimate_mesh_error
+from .mesh_error import MeshError, estimate_mesh_error, release
 from .outcome import Facts, build_result
 from .readout import errors_between, read_out
 from .refine import adapted_nodes, minimum
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
-           "admissibility", "REMEDY_MAX_DOFS"]
+           "admissibility", "REMEDY_MAX_DOFS", "REST_CHECKED"]
 
 #: The methods of a problem that each ``method`` option calls.
 METHODS = {"newton": "solve_newton", "picard": "solve_picard",
@@ -179,6 +179,7 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
         rounds += 1
         finer, u_fine = disc.remeshed(problem, u, prm, X, getattr(problem, "Z", None),
                                       options)
+        release(problem)         # only its nodes and state are read again
         with stage(f"{disc.name} refinement round {rounds}, {finer.n_dofs:,} unknowns"):
             u, info_fine = _iterate(finer, u_fine, prm, options)
         problem, info = finer, info_fine.after(info)
@@ -311,10 +312,18 @@ def _answer(disc, case, prm, options, restart):
     if why:
         info.converged = False
         info.reason = f"converged to an inadmissible field: {why}"
-    elif info.converged and _rests(case, problem, u, prm) and not _must_rest(case):
+    elif info.converged and _rests(case, problem, u, prm) and not _must_rest(case) \
+            and not start.kept.get(REST_CHECKED):
         start, problem, u, info = _higher_branch(disc, case, prm, options, start, problem, u,
                                                  info)
     return start, problem, u, info, options
+
+
+#: The key of :attr:`Start.kept` (and so of a result's solver objects) saying that a resting
+#: answer was checked and stands: the model's safe start, solved, rests as low or lower
+#: (:func:`_higher_branch`). A start that carries it is not checked again: fe2d's strip or
+#: full width started from a periodic cell's resting answer so checked.
+REST_CHECKED = "rest_checked"
 
 
 def _higher_branch(disc, case, prm, options, start, problem, u, info):
@@ -331,6 +340,7 @@ def _higher_branch(disc, case, prm, options, start, problem, u, info):
     if not _ok(info2, admissibility(case, problem2, u2, prm) if info2.converged else "failed"):
         return start, problem, u, info
     if minimum(problem2, u2, prm)[0] <= minimum(problem, u, prm)[0] + 1e-9:
+        start.kept[REST_CHECKED] = "its safe start rests as low or lower"
         return start, problem, u, info
     note = "from the safe start: the direct start ended on a branch with the web resting lower"
     return safe, problem2, u2, info2.after(info, note)

@@ -117,6 +117,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     Newton's tolerance, in fewer steps: none when it is still converged)."""
     out = MeshError()
     here = read_out(case, problem, u, prm)
+    release(problem)       # solved: only its nodes and state are read from here on
     keep_x, keep_z = _features(problem, prm)
     Z = getattr(problem, "Z", None)
     Xc = coarser_nodes(problem.X, keep_x)
@@ -228,12 +229,23 @@ def _solved_on(disc, case, problem, u, prm, options, iterate, out: MeshError, X,
     fine, uf = disc.remeshed(problem, u, prm, X, Z, options)
     if fine.n_dofs > MAX_DOFS:
         return None, None, None, "beyond the cap"
+    release(problem)          # kept for its nodes and state while the finer one is solved
     with stage(f"{disc.name} error estimate asks for a finer mesh, {fine.n_dofs:,} "
                "unknowns"):
         uf, info = iterate(fine, uf, prm, options)
     out.iterations += info.iterations
     why = "did not converge" if not info.converged else admissibility(case, fine, uf, prm)
     return fine, uf, info, why
+
+
+def release(problem) -> None:
+    """Drop what ``problem`` builds on first use (a 2-D film's assembly and factorisation
+    plans, :meth:`webfem.fem.film_problem.FoilBearing2D.release`), where it can: a mesh
+    kept for its nodes and state while another is solved (#147 of the envelope: the peak
+    resident memory 2.75 -> 2.37 GB, the same answer)."""
+    drop = getattr(problem, "release", None)
+    if drop is not None:
+        drop()
 
 
 def _same_mesh(solved, X, Z) -> bool:
@@ -266,6 +278,7 @@ def _by_direction(disc, case, problem, u, prm, options, here, out: MeshError, Xc
         out.iterations += info.iterations
         found.append(errors_between(case, here, read_out(case, coarse, uc, prm))
                      if info.converged else dict.fromkeys(out.errors))
+        release(coarse)
     out.errors = _summed(*found)
     if out.errors["h_center"] is not None:
         out.basis = (f"changes from the meshes with cells twice as long along x and across "
