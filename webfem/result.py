@@ -144,7 +144,8 @@ class State:
     For the 2-D film also ``key``: the options it was solved with (a restart with others
     starts from its 1-D state only), and ``prior``: the case and DOF vector of the point
     before it on a path when that point was solved on the same mesh (one level deep: a
-    secant predictor's second point, :mod:`webfem.models.continued`), and ``coarse``: the
+    secant predictor's second point, :mod:`webfem.models.continued`), ``prior2``: the one
+    before that, on the same mesh too (a quadratic predictor's third point), and ``coarse``: the
     nodes and solved DOF vector ``(X, Z, u)`` on the answer's coarser mesh (its error
     estimate's), from which the next point's coarse solve starts (two-grid start)."""
 
@@ -157,6 +158,7 @@ class State:
     key: dict | None = None
     prior: tuple | None = None
     coarse: tuple | None = None
+    prior2: tuple | None = None
 
     def __repr__(self) -> str:
         z = f" x {len(self.Z)} Z" if self.Z is not None else ""

@@ -268,6 +268,8 @@ class _Film(Discretisation):
         if continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size):
             problem = on_moved
             kept["continued_from"] = (restart.case, restart.u)
+            if restart.prior is not None and restart.prior[1].shape == restart.u.shape:
+                kept["continued_from2"] = restart.prior
         else:
             problem = FoilBearing2D(planned, Zc, order=options.order)
             u0 = on_moved.transfer(u0, prm, problem)
@@ -276,6 +278,7 @@ class _Film(Discretisation):
         if two is not None:
             if two[0] is not problem:
                 kept.pop("continued_from", None)      # another mesh: no secant from it
+                kept.pop("continued_from2", None)
                 kept["continued"] += ", refined where its coarser mesh's gap asks"
             problem, u0, info, kept["coarse"] = two
             kept["continued"] += ", corrected by its coarser mesh solved first"
@@ -440,6 +443,7 @@ class _Film(Discretisation):
                      line=start.line,
                      key=continued.mesh_key(options) if options is not None else None,
                      prior=before if same else None,
+                     prior2=start.kept.get("continued_from2") if same else None,
                      coarse=None if coarse is None or coarse[0].grooves is not None else
                      (coarse[0].X.copy(), coarse[0].Z.copy(), np.asarray(coarse[1]).copy()))
 
