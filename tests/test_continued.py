@@ -131,3 +131,17 @@ def test_two_grid_start_solves_the_coarser_mesh_first():
         assert two[f"error_{q}"] == pytest.approx(plain[f"error_{q}"], rel=1e-5, abs=1e-12)
     cold = webfem.solve(cases[1], "fe2d")
     assert agree(cases[1], two, cold) == []
+
+
+def test_quadratic_predictor_on_a_path_of_four_points():
+    """From the fourth point of a path on one mesh the start is the quadratic through the
+    three states before it (in log speed), and the answer still agrees with the cold
+    solve within the stated errors."""
+    cases = [BASE.updated({"roller.speed": float(u)}) for u in np.geomspace(4.07, 7.20, 4)]
+    along = list(webfem.solve_along(cases, "fe2d"))
+    assert all(a["converged"] for a in along)
+    assert "quadratic predictor" in along[3].diagnostics.solver["continued"]
+    cold = webfem.solve(cases[3], "fe2d")
+    assert agree(cases[3], along[3], cold) == []
+    w = continued.extrapolation_weights(cases[:3], cases[3])
+    assert w.sum() == pytest.approx(1.0) and w.tolist() == pytest.approx([1.0, -3.0, 3.0])
