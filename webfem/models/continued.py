@@ -5,8 +5,8 @@ A cold fe2d solve spends most of its time finding its mesh (a 1-D start, a 2-D s
 start mesh, the refinement where the film is thin) and its state (Newton from the 1-D
 solution). Along a path of nearby cases (a sweep) the previous point has both: its final
 mesh, moved with the scaled geometry (:func:`moved_nodes`), and its state, extrapolated
-along the path when the point before it was solved on the same mesh (:func:`secant_factor`),
-start this point's Newton. When the previous point kept its solution on its coarser mesh
+along the path from the states before it on that mesh (solved there, or carried over to it
+where the mesh changed: :func:`predicted`), start this point's Newton. When the previous point kept its solution on its coarser mesh
 (``State.coarse``, the error estimate's), the 2-D model solves this point's coarser mesh
 first and starts the fine Newton from it (a two-grid start: :meth:`webfem.models.fe2d.
 _Film._two_grid`). Nothing here decides the answer: the driver still refines where the film
@@ -31,7 +31,7 @@ from ..result import State
 from .refine import adapted_nodes
 
 __all__ = ["moved_nodes", "secant_factor", "extrapolation_weights", "mesh_key", "continued_state", "predicted",
-           "similar", "planned_nodes", "start_info",
+           "similar", "near", "planned_nodes", "start_info",
            "MAX_SECANT", "MESH_SLACK"]
 
 #: The secant extrapolates at most this many previous steps ahead (a sweep's next step is
@@ -183,6 +183,29 @@ def predicted(problem, case: Case, restart: State) -> tuple[np.ndarray, str]:
         chain.pop(0)
     u0[problem.fixed] = 0.0
     return u0, note
+
+
+#: A step along the path this short (in the logarithm of a positive parameter: 10 %) keeps
+#: the previous point's mesh whatever the mesh its predicted gap asks for: the previous
+#: answer's error estimate has just checked that mesh (and refined it where it had to). A
+#: traction-loss search's root finding steps 0.06-0.6 % from the nearest solved speed, near
+#: 23 m/s on the base case where the estimate bisects the mesh the gap asks for; planned
+#: again, each evaluation had its estimate bisect it again (14-20 Newton steps each).
+NEAR_STEP = 0.1
+
+
+def near(c0: Case, c1: Case) -> bool:
+    """Whether ``c1`` is a step of at most :data:`NEAR_STEP` from ``c0`` along one input
+    (:func:`_path`).
+
+    >>> from webfem import Case
+    >>> near(Case().updated({"roller.speed": 23.54}), Case().updated({"roller.speed": 23.41}))
+    True
+    >>> near(Case().updated({"roller.speed": 20.0}), Case().updated({"roller.speed": 24.0}))
+    False
+    """
+    s = _path([c0, c1])
+    return s is not None and abs(s[1] - s[0]) <= NEAR_STEP
 
 
 def similar(n_moved: int, n_cold: int) -> bool:

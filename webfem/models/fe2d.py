@@ -245,7 +245,9 @@ class _Film(Discretisation):
         many nodes as the mesh this case's predicted gap asks for (:func:`continued.
         planned_nodes`, within :data:`continued.MESH_SLACK`: along a sweep the meshes
         drift, and the previous point's may be twice as fine where its estimate bisected
-        it), else on that planned mesh with the moved state carried over. None (a cold
+        it) or while the step is short (:func:`continued.near`: the previous answer's
+        estimate has just checked that mesh), else on that planned mesh with the moved
+        state carried over. None (a cold
         start) when the moved state does not fit its mesh or is not finite."""
         X, Z = moved
         graded = graded_nodes(prm.beta, options.entry, level=options.level)
@@ -265,7 +267,8 @@ class _Film(Discretisation):
         Zc = problem_for_width(case, options)
         kept = {"continued": note}
         info = continued.start_info()
-        if continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size):
+        if (continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size)) \
+                or continued.near(restart.case, case):
             problem = on_moved
             kept["continued_from"] = (restart.case, restart.u)
             if restart.prior is not None and restart.prior[1].shape == restart.u.shape:
@@ -274,12 +277,18 @@ class _Film(Discretisation):
             problem = FoilBearing2D(planned, Zc, order=options.order)
             u0 = on_moved.transfer(u0, prm, problem)
             kept["continued"] = note + ", carried over to the mesh its gap asks for"
+            # the previous state carried over too: the next point's secant (from the
+            # previous state alone, the points after a change of mesh took 9-10 steps)
+            kept["continued_from"] = (restart.case, on_moved.transfer(restart.u, prm, problem))
         two = self._two_grid(case, prm, options, problem, u0, restart, on_moved)
         if two is not None:
             if two[0] is not problem:
-                kept.pop("continued_from", None)      # another mesh: no secant from it
-                kept.pop("continued_from2", None)
                 kept["continued"] += ", refined where its coarser mesh's gap asks"
+                kept.pop("continued_from2", None)
+                before = kept.pop("continued_from", None)
+                if before is not None:
+                    kept["continued_from"] = (before[0],
+                                              problem.transfer(before[1], prm, two[0]))
             problem, u0, info, kept["coarse"] = two
             kept["continued"] += ", corrected by its coarser mesh solved first"
         # a solved state carried over: Newton's coupled steps straight away
