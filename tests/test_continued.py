@@ -148,15 +148,17 @@ def test_quadratic_predictor_on_a_path_of_four_points():
 
 
 def test_a_near_step_keeps_the_previous_mesh():
-    """A step of at most continued.NEAR_STEP (a root finder's) starts on the previous
-    point's mesh, also where that point's estimate refined the mesh its gap asked for; the
-    answer agrees with the cold solve within the stated errors. A sweep's step does not."""
+    """A step of at most continued.NEAR_STEP (a root finder's) from a point whose error
+    estimate refined the mesh its gap asked for starts on that point's mesh (planned again,
+    its estimate refined it again), and the mark stays with the mesh; the answer agrees
+    with the cold solve within the stated errors. A sweep's step is not near."""
     a, b = (BASE.updated({"roller.speed": u}) for u in (25.1, 23.5))
     assert continued.near(a, b) and not continued.near(a, a.updated({"roller.speed": 30.0}))
     first = webfem.solve(a, "fe2d")
+    assert first.restart.refined
     r = webfem.solve(b, "fe2d", initial=first)
     assert r["converged"] and "carried over" not in r.diagnostics.solver["continued"]
-    assert r["n_dofs"] == first["n_dofs"]
+    assert r["n_dofs"] == first["n_dofs"] and r.restart.refined
     cold = webfem.solve(b, "fe2d")
     assert agree(b, r, cold) == []
     assert r["iterations"] < cold["iterations"]

@@ -186,11 +186,13 @@ def predicted(problem, case: Case, restart: State) -> tuple[np.ndarray, str]:
 
 
 #: A step along the path this short (in the logarithm of a positive parameter: 10 %) keeps
-#: the previous point's mesh whatever the mesh its predicted gap asks for: the previous
-#: answer's error estimate has just checked that mesh (and refined it where it had to). A
-#: traction-loss search's root finding steps 0.06-0.6 % from the nearest solved speed, near
+#: the previous point's mesh where its error estimate refined it (``State.refined``),
+#: whatever the mesh the predicted gap asks for: that mesh was too coarse a step away. A
+#: traction-loss search's root finding steps 0.06-6 % from the nearest solved speed, near
 #: 23 m/s on the base case where the estimate bisects the mesh the gap asks for; planned
-#: again, each evaluation had its estimate bisect it again (14-20 Newton steps each).
+#: again, each evaluation had its estimate bisect it again (14-20 Newton steps each). Only
+#: a refined mesh: kept on every short step, any mesh would drift from what the case asks
+#: for along a finely stepped sweep (the 1.2x of :data:`MESH_SLACK` bounds that).
 NEAR_STEP = 0.1
 
 
