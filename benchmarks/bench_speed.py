@@ -8,7 +8,9 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    problem cache cleared before each, imports and first-use set-up excluded by a warm-up);
 2. the 24-point log-spaced speed sweep 0.5-40 m/s through :func:`webfem.solve_along`
    (one run; its points are also checked against cold solves elsewhere: tests/
-   test_continued.py);
+   test_continued.py), beside it the process's CPU time (on a shared machine the wall
+   time varied 1.5-2x between runs, the CPU time about 10 %), the iterations and the
+   sparse factorisations (both deterministic);
 3. the median Newton iterations of that sweep's continued points (points 2-24), as each
    result reports them: the solve's steps plus those of its mesh error estimate (a solve on
    the mesh with cells twice as long; a continued point solves that mesh first, its
@@ -81,16 +83,17 @@ def main(groove_map: bool = True):
     cases = [base.updated({"roller.speed": float(u)}) for u in np.geomspace(0.5, 40.0, 24)]
     factors, sizes, out = [0], [[]], []
     with _counting(factors, sizes):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         for res in solve_along(cases, "fe2d"):
             out.append(res)
             factors.append(0)
             sizes.append([])
-        t = time.perf_counter() - t0
+        t, cpu = time.perf_counter() - t0, time.process_time() - c0
     its = [res["iterations"] for res in out]
     ok = sum(res["converged"] for res in out)
-    print(f"2. 24-point speed sweep 0.5-40 m/s (log-spaced), solve_along: {t:.2f} s, "
-          f"{ok}/24 converged, {sum(its)} iterations")
+    print(f"2. 24-point speed sweep 0.5-40 m/s (log-spaced), solve_along: {t:.2f} s "
+          f"({cpu:.2f} s CPU), {ok}/24 converged, {sum(its)} iterations, "
+          f"{sum(factors)} factorisations")
     print(target("24-point speed sweep", t, 2.0))
     med = statistics.median(its[1:])
     print(f"3. Newton iterations per continued point (solve + mesh error estimate): median "

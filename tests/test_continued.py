@@ -131,3 +131,34 @@ def test_two_grid_start_solves_the_coarser_mesh_first():
         assert two[f"error_{q}"] == pytest.approx(plain[f"error_{q}"], rel=1e-5, abs=1e-12)
     cold = webfem.solve(cases[1], "fe2d")
     assert agree(cases[1], two, cold) == []
+
+
+def test_quadratic_predictor_on_a_path_of_four_points():
+    """From the fourth point of a path on one mesh the start is the quadratic through the
+    three states before it (in log speed), and the answer still agrees with the cold
+    solve within the stated errors."""
+    cases = [BASE.updated({"roller.speed": float(u)}) for u in np.geomspace(4.07, 7.20, 4)]
+    along = list(webfem.solve_along(cases, "fe2d"))
+    assert all(a["converged"] for a in along)
+    assert "quadratic predictor" in along[3].diagnostics.solver["continued"]
+    cold = webfem.solve(cases[3], "fe2d")
+    assert agree(cases[3], along[3], cold) == []
+    w = continued.extrapolation_weights(cases[:3], cases[3])
+    assert w.sum() == pytest.approx(1.0) and w.tolist() == pytest.approx([1.0, -3.0, 3.0])
+
+
+def test_a_near_step_keeps_the_previous_mesh():
+    """A step of at most continued.NEAR_STEP (a root finder's) from a point whose error
+    estimate refined the mesh its gap asked for starts on that point's mesh (planned again,
+    its estimate refined it again), and the mark stays with the mesh; the answer agrees
+    with the cold solve within the stated errors. A sweep's step is not near."""
+    a, b = (BASE.updated({"roller.speed": u}) for u in (25.1, 23.5))
+    assert continued.near(a, b) and not continued.near(a, a.updated({"roller.speed": 30.0}))
+    first = webfem.solve(a, "fe2d")
+    assert first.restart.refined
+    r = webfem.solve(b, "fe2d", initial=first)
+    assert r["converged"] and "carried over" not in r.diagnostics.solver["continued"]
+    assert r["n_dofs"] == first["n_dofs"] and r.restart.refined
+    cold = webfem.solve(b, "fe2d")
+    assert agree(b, r, cold) == []
+    assert r["iterations"] < cold["iterations"]

@@ -143,8 +143,11 @@ class State:
 
     For the 2-D film also ``key``: the options it was solved with (a restart with others
     starts from its 1-D state only), and ``prior``: the case and DOF vector of the point
-    before it on a path when that point was solved on the same mesh (one level deep: a
-    secant predictor's second point, :mod:`webfem.models.continued`), and ``coarse``: the
+    before it on a path, on this answer's mesh (solved on the same mesh, or carried over to
+    it where the continued start changed the mesh; a secant predictor's second point,
+    :mod:`webfem.models.continued`), ``prior2``: the one before that, solved on the same
+    mesh too (a quadratic predictor's third point), ``refined``: whether the answer's mesh
+    is one its error estimate refined (or one kept from a restart whose was), and ``coarse``: the
     nodes and solved DOF vector ``(X, Z, u)`` on the answer's coarser mesh (its error
     estimate's), from which the next point's coarse solve starts (two-grid start)."""
 
@@ -157,6 +160,8 @@ class State:
     key: dict | None = None
     prior: tuple | None = None
     coarse: tuple | None = None
+    prior2: tuple | None = None
+    refined: bool = False
 
     def __repr__(self) -> str:
         z = f" x {len(self.Z)} Z" if self.Z is not None else ""

@@ -23,11 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse.linalg as spla
-from skfem import Basis, BilinearForm, ElementLineHermite, ElementQuad1, ElementQuad2
+from skfem import Basis, BilinearForm, ElementQuad1, ElementQuad2
 
 from . import continuation, forms
 from .grooves import GroovePattern
-from .hermite import LineProbes
+from .hermite import HermiteLine, LineProbes
 from .mesh import line_mesh
 from .newton import PatternSolver, newton
 from .outcome import SolveInfo
@@ -112,8 +112,10 @@ class FoilBearing2D:
         #: the width the film stands for: the domain's, or for a strip the half web's
         self.width = float(self.Z[-1] - (0.0 if self.strip else self.Z[0]))
         self.line = line_mesh(self.X)
-        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12)
-        self.wbasis = Basis(self.line, ElementLineHermite(), intorder=6)
+        # a new Hermite element per mesh: it caches mesh data (scikit-fem 12); HermiteLine
+        # evaluates its four functions at once, bitwise as scikit-fem's (the web's values at
+        # each new point set: 9 % of a 24-point speed sweep's time with scikit-fem's)
+        self.wbasis = Basis(self.line, HermiteLine(), intorder=6)
         self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
         self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                             intorder=4 if order == 2 else 3)

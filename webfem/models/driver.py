@@ -106,9 +106,10 @@ class Discretisation:
         return problem
 
     def state(self, case: Case, problem, u, start: Start, options=None,
-              coarse=None) -> State:
+              coarse=None, refined: bool = False) -> State:
         """What a later solve restarts from (``options``: those it was solved with;
-        ``coarse``: ``(problem, state)`` solved on the answer's coarser mesh, or None)."""
+        ``coarse``: ``(problem, state)`` solved on the answer's coarser mesh, or None;
+        ``refined``: whether the error estimate refined the answer's mesh)."""
         return State(case, self.name, np.asarray(problem.X).copy(), np.asarray(u).copy())
 
 

@@ -251,7 +251,10 @@ class _Film(Discretisation):
         many nodes as the mesh this case's predicted gap asks for (:func:`continued.
         planned_nodes`, within :data:`continued.MESH_SLACK`: along a sweep the meshes
         drift, and the previous point's may be twice as fine where its estimate bisected
-        it), else on that planned mesh with the moved state carried over. None (a cold
+        it) or, where the previous point's error estimate refined its mesh (``State.
+        refined``, kept while the mesh is), while the step is short (:func:`continued.near`:
+        the mesh this case's gap asks for is then likely to be refined again), else on that
+        planned mesh with the moved state carried over. None (a cold
         start) when the moved state does not fit its mesh or is not finite."""
         X, Z = moved
         graded = graded_nodes(prm.beta, options.entry, level=options.level)
@@ -271,18 +274,29 @@ class _Film(Discretisation):
         Zc = problem_for_width(case, options)
         kept = {"continued": note}
         info = continued.start_info()
-        if continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size):
+        if (continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size)) \
+                or (restart.refined and continued.near(restart.case, case)):
             problem = on_moved
+            kept["kept_refined"] = restart.refined
             kept["continued_from"] = (restart.case, restart.u)
+            if restart.prior is not None and restart.prior[1].shape == restart.u.shape:
+                kept["continued_from2"] = restart.prior
         else:
             problem = FoilBearing2D(planned, Zc, order=options.order)
             u0 = on_moved.transfer(u0, prm, problem)
             kept["continued"] = note + ", carried over to the mesh its gap asks for"
+            # the previous state carried over too: the next point's secant (from the
+            # previous state alone, the points after a change of mesh took 9-10 steps)
+            kept["continued_from"] = (restart.case, on_moved.transfer(restart.u, prm, problem))
         two = self._two_grid(case, prm, options, problem, u0, restart, on_moved)
         if two is not None:
             if two[0] is not problem:
-                kept.pop("continued_from", None)      # another mesh: no secant from it
                 kept["continued"] += ", refined where its coarser mesh's gap asks"
+                kept.pop("continued_from2", None)
+                before = kept.pop("continued_from", None)
+                if before is not None:
+                    kept["continued_from"] = (before[0],
+                                              problem.transfer(before[1], prm, two[0]))
             problem, u0, info, kept["coarse"] = two
             kept["continued"] += ", corrected by its coarser mesh solved first"
         # a solved state carried over: Newton's coupled steps straight away
@@ -436,7 +450,7 @@ class _Film(Discretisation):
         return Rebuild(build, *args, **kwargs)
 
     def state(self, case: Case, problem, u, start: Start, options=None,
-              coarse=None) -> State:
+              coarse=None, refined: bool = False) -> State:
         # the secant's second point: the state this one continued from, while this answer
         # stayed on the same mesh (refinement changes the DOFs' meaning)
         before = start.kept.get("continued_from")
@@ -446,6 +460,9 @@ class _Film(Discretisation):
                      line=start.line,
                      key=continued.mesh_key(options) if options is not None else None,
                      prior=before if same else None,
+                     prior2=start.kept.get("continued_from2") if same else None,
+                     # a mesh the estimate refined stays marked while it is kept
+                     refined=refined or (same and start.kept.get("kept_refined", False)),
                      coarse=None if coarse is None or coarse[0].grooves is not None else
                      (coarse[0].X.copy(), coarse[0].Z.copy(), np.asarray(coarse[1]).copy()))
 

@@ -84,4 +84,5 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
         solver={**start.kept, "problem": disc.kept(problem), "state": u})
     return Result(case, summary, node_fields(case, problem, u, prm), diagnostics,
                   disc.film(case, problem, u, prm),
-                  restart=disc.state(case, problem, u, start, options, mesh_error.coarse))
+                  restart=disc.state(case, problem, u, start, options, mesh_error.coarse,
+                                     refined=mesh_error.rounds > 0))
