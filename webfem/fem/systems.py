@@ -18,6 +18,7 @@ import scipy.sparse as sp
 
 from . import forms
 from .fast import BasisData
+from .transfer import basis_matrices
 from .forms import (COUPLING, FILM, SINK, WEB, coupling_coefficients, film_coefficients,
                     web_coefficients)
 from .weakform import FastForm, Part, Space, coefficient, skfem_forms
@@ -219,8 +220,8 @@ class FilmSystem:
         """The film's blocks on the web and the width average, assembled through the
         transfer matrices: sum over blocks of A_op^T diag(c dx) B_op' (A, B: the film's
         basis or the web's functions at the film's points)."""
-        T = self.T
-        mats = {"p": {"val": T["B0"], "dx": T["BX"], "dz": T["BZ"]}, "w": {"val": T["M"]}}
+        T, B = self.T, basis_matrices(self.fbasis)      # built here: the reference only
+        mats = {"p": {"val": B["B0"], "dx": B["BX"], "dz": B["BZ"]}, "w": {"val": T["M"]}}
         blocks = [b for form in (FILM, COUPLING) for b in form.blocks if "w" in (b.field,
                                                                                b.trial)]
         out = {}
