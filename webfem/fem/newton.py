@@ -129,6 +129,9 @@ class PatternSolver:
         rows = B.indices
         cols = np.repeat(np.arange(B.shape[1]), np.diff(B.indptr))
         B.data *= s[rows] * s[cols]
+        # the column of each entry is as large as the matrix's data (80 MB at 3.9e5
+        # unknowns): not held through the factorisation, when the process peaks
+        del rows, cols
         lu = self._factor(B, "NATURAL")
 
         def solve_scaled(b):

@@ -165,6 +165,7 @@ class FilmSystem:
         self.width = np.asarray(width, float) if np.ndim(width) else float(width)
         self.groove = 0.0 if groove is None else np.asarray(groove, float)
         self.f = f = BasisData(fbasis)
+        f.share_gradients(fbasis)
         self.w = w = BasisData(wbasis, hess=(0,))
         self.nP = nP = f.N
         film = {"p": Space.from_basis(f), "w": Space.from_arrays(T["M_loc"], T["M_dofs"], nP)}
