@@ -317,3 +317,25 @@ def test_film_basis_data_is_held_once_with_the_same_bits(film):
             assert np.array_equal(got[k], total), (fi, fj)
             k += 1
     assert k == len(got)
+
+
+def test_rounding_floor_on_the_whole_jacobian_is_the_reduced_ones(film):
+    """newton.rounding_floor sums |J| |u| over the whole film + web Jacobian with |u| zero
+    off the free unknowns: the same bits as on the reduced matrix (also with a state whose
+    fixed entries are not zero; a matrix not in canonical form takes the reduced path)."""
+    import scipy.sparse as sp
+
+    from webfem.fem import newton as nw
+
+    p, u = film
+    J = p.jacobian(u, PRM)
+    v = u.copy()
+    v[p.fixed] = 7.0
+    for w in (u, v):
+        A = abs(J[p.free][:, p.free])
+        want = float(np.finfo(float).eps * nw.norm2(A @ np.abs(w[p.free])))
+        assert nw.rounding_floor(J, w, p.free) == want > 0.0
+    dup = sp.csr_matrix((np.append(J.data, 1.0), np.append(J.indices, J.indices[0]),
+                         np.append(J.indptr[:-1], J.nnz + 1)), shape=J.shape)
+    assert not dup.has_canonical_format
+    assert np.isfinite(nw.rounding_floor(dup, u, p.free))
