@@ -59,6 +59,10 @@ class _LastState:
         self._key = (np.array(u, float, copy=True), args, newton)
         return self._value
 
+    def forget(self) -> None:
+        """Let the kept coefficients go (computed again if asked for)."""
+        self._key = self._value = None
+
 
 class LineSystem:
     """The 1-D film + web system on ``basis`` (P1 or P2 pressure x Hermite web, one composite
@@ -198,7 +202,12 @@ class FilmSystem:
         return self.fast.residual(self.values(u, prm))
 
     def jacobian(self, u, prm, newton: bool = True) -> sp.csr_matrix:
-        return self.fast.jacobian(self.values(u, prm, newton))
+        J = self.fast.jacobian(self.values(u, prm, newton))
+        # the solvers ask for a residual at another state next (Newton's trial, Picard's
+        # iterate): the coefficients (~100 MB at 3.9e5 unknowns) are not held through the
+        # factorisation, when the process peaks
+        self._last.forget()
+        return J
 
     # -- the scikit-fem reference, the cross-mesh blocks through the transfer matrices -------
     def _reference_forms(self):
