@@ -16,6 +16,7 @@ from webfem.fem import fast, forms
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
 from webfem.fem.transfer import width_nodes
+from webfem.fem.weakform import coefficient
 from webfem.models.fe1d import FoilBearing1D
 from webfem.models.fe2d import FoilBearing2D
 
@@ -263,3 +264,78 @@ def test_a_released_problem_assembles_and_solves_as_before(grooved):
     assert np.array_equal(R0, R1) and (J0 != J1).nnz == 0
     assert np.array_equal(x0, p.solver.solve(J1, p.free, R1[p.free]))
     assert np.array_equal(A0, p.width_average(u))
+
+
+def test_film_basis_data_is_held_once_with_the_same_bits(film):
+    """The 2-D film's basis data held once (the values a broadcast of the reference
+    element's, scikit-fem's gradients views of BasisData's, the p-w test layout a view of
+    the p-p one, the trial sides summed into the product's operand) gives every block, the
+    residual and the interpolated state bit for bit as the contiguous copies and the
+    per-operator stacks do (the assembly before these were shared)."""
+    p, u = film
+    system = p.system
+    f, ff = system.f, system.fast
+    assert f.phi_c[0].strides[1] == 0                          # one element's values
+    for i in range(p.fbasis.Nbfun):
+        assert np.shares_memory(p.fbasis.basis[i][0].grad, f.grad_c[0])
+    film_layouts = ff._layouts[0]
+    assert np.shares_memory(film_layouts["p", "w"][1], film_layouts["p", "p"][1])
+    # interpolation and the residual's contraction over a broadcast and a contiguous copy
+    phi = np.ascontiguousarray(f.phi_c[0])
+    coef = u[f.dofs]
+    assert np.array_equal(np.einsum("ie,ieq->eq", coef, f.phi_c[0]),
+                          np.einsum("ie,ieq->eq", coef, phi))
+    values = system.values(u, PRM)
+    c = values[0]["sink"] * f.dx
+    assert np.array_equal(np.einsum("ieq,eq->ie", f.phi_c[0], c),
+                          np.einsum("ieq,eq->ie", phi, c))
+    # every block as the per-operator assembly computes it: stacked trial sides, layouts
+    # built afresh from contiguous copies, fast.contract_layout
+    got = ff.blocks(values)
+    k = 0
+    for part, groups, vals in zip(ff.parts, ff._groups, values):
+        for (fi, fj), group in groups.items():
+            ops = list(dict.fromkeys(b.op for b in group))
+            trial = dict.fromkeys(ops)
+            total = None
+            for b in group:
+                cb = coefficient(vals, b.coef)
+                if np.ndim(cb) == 0:
+                    piece = float(cb) * fast.contract_layout(
+                        fast.test_layout(np.ascontiguousarray(part.spaces[fi].ops[b.op])),
+                        part.spaces[fj].ops[b.trial_op] * part.dx)
+                    total = piece if total is None else total + piece
+                    continue
+                term = np.ascontiguousarray(part.spaces[fj].ops[b.trial_op]) * (cb * part.dx)
+                trial[b.op] = term if trial[b.op] is None else trial[b.op] + term
+            used = [o for o in ops if trial[o] is not None]
+            if used:
+                lay = fast.test_layout(np.stack([np.ascontiguousarray(part.spaces[fi].ops[o])
+                                                 for o in used]))
+                piece = fast.contract_layout(lay, np.stack([trial[o] for o in used]))
+                total = piece if total is None else total + piece
+            assert np.array_equal(got[k], total), (fi, fj)
+            k += 1
+    assert k == len(got)
+
+
+def test_rounding_floor_on_the_whole_jacobian_is_the_reduced_ones(film):
+    """newton.rounding_floor sums |J| |u| over the whole film + web Jacobian with |u| zero
+    off the free unknowns: the same bits as on the reduced matrix (also with a state whose
+    fixed entries are not zero; a matrix not in canonical form takes the reduced path)."""
+    import scipy.sparse as sp
+
+    from webfem.fem import newton as nw
+
+    p, u = film
+    J = p.jacobian(u, PRM)
+    v = u.copy()
+    v[p.fixed] = 7.0
+    for w in (u, v):
+        A = abs(J[p.free][:, p.free])
+        want = float(np.finfo(float).eps * nw.norm2(A @ np.abs(w[p.free])))
+        assert nw.rounding_floor(J, w, p.free) == want > 0.0
+    dup = sp.csr_matrix((np.append(J.data, 1.0), np.append(J.indices, J.indices[0]),
+                         np.append(J.indptr[:-1], J.nnz + 1)), shape=J.shape)
+    assert not dup.has_canonical_format
+    assert np.isfinite(nw.rounding_floor(dup, u, p.free))

@@ -14,7 +14,8 @@ from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, Elem
 
 from webfem.fem.hermite import LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
-from webfem.fem.transfer import (cellwise_matrices, film_mesh, interpolate_values,
+from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_mesh,
+                                 interpolate_values,
                                  quadrature_matrices, tensor_interpolation,
                                  web_values, width_nodes)
 
@@ -69,7 +70,7 @@ def test_cellwise_matrices_are_scipys(order):
     wbasis = Basis(line_mesh(X), ElementLineHermite(), intorder=6)
     fbasis = Basis(film_mesh(X, width_nodes(3.0)), ElementQuad2() if order == 2
                    else ElementQuad1(), intorder=4 if order == 2 else 3)
-    T = quadrature_matrices(fbasis, wbasis)
+    T = quadrature_matrices(fbasis, wbasis) | basis_matrices(fbasis)
     nel, nq = fbasis.dx.shape
 
     def scipys(values, dofs, n):

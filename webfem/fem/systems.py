@@ -18,6 +18,7 @@ import scipy.sparse as sp
 
 from . import forms
 from .fast import BasisData
+from .transfer import basis_matrices
 from .forms import (COUPLING, FILM, SINK, WEB, coupling_coefficients, film_coefficients,
                     web_coefficients)
 from .weakform import FastForm, Part, Space, coefficient, skfem_forms
@@ -57,6 +58,10 @@ class _LastState:
         self._value = compute()
         self._key = (np.array(u, float, copy=True), args, newton)
         return self._value
+
+    def forget(self) -> None:
+        """Let the kept coefficients go (computed again if asked for)."""
+        self._key = self._value = None
 
 
 class LineSystem:
@@ -164,6 +169,7 @@ class FilmSystem:
         self.width = np.asarray(width, float) if np.ndim(width) else float(width)
         self.groove = 0.0 if groove is None else np.asarray(groove, float)
         self.f = f = BasisData(fbasis)
+        f.share_gradients(fbasis)
         self.w = w = BasisData(wbasis, hess=(0,))
         self.nP = nP = f.N
         film = {"p": Space.from_basis(f), "w": Space.from_arrays(T["M_loc"], T["M_dofs"], nP)}
@@ -196,7 +202,12 @@ class FilmSystem:
         return self.fast.residual(self.values(u, prm))
 
     def jacobian(self, u, prm, newton: bool = True) -> sp.csr_matrix:
-        return self.fast.jacobian(self.values(u, prm, newton))
+        J = self.fast.jacobian(self.values(u, prm, newton))
+        # the solvers ask for a residual at another state next (Newton's trial, Picard's
+        # iterate): the coefficients (~100 MB at 3.9e5 unknowns) are not held through the
+        # factorisation, when the process peaks
+        self._last.forget()
+        return J
 
     # -- the scikit-fem reference, the cross-mesh blocks through the transfer matrices -------
     def _reference_forms(self):
@@ -219,8 +230,8 @@ class FilmSystem:
         """The film's blocks on the web and the width average, assembled through the
         transfer matrices: sum over blocks of A_op^T diag(c dx) B_op' (A, B: the film's
         basis or the web's functions at the film's points)."""
-        T = self.T
-        mats = {"p": {"val": T["B0"], "dx": T["BX"], "dz": T["BZ"]}, "w": {"val": T["M"]}}
+        T, B = self.T, basis_matrices(self.fbasis)      # built here: the reference only
+        mats = {"p": {"val": B["B0"], "dx": B["BX"], "dz": B["BZ"]}, "w": {"val": T["M"]}}
         blocks = [b for form in (FILM, COUPLING) for b in form.blocks if "w" in (b.field,
                                                                                b.trial)]
         out = {}
