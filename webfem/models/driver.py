@@ -210,7 +210,8 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
     ``estimate_if(problem, u, prm) -> bool``: whether the answer's mesh error is estimated
     (with ``options.estimate``; None: always). A caller that solves a problem only to decide
     what to solve next (the periodic groove cell before an edge strip) skips the estimate
-    and the refinement it asks for where the answer will not be returned.
+    and the refinement it asks for where the answer will not be returned, and stops that
+    refinement once a refined answer no longer would be.
 
     ``initial``: a result (or its :class:`~webfem.result.State`) to start from; a start
     from it that fails or ends inadmissible is retried from a cold start, so the answer never
@@ -239,7 +240,8 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
     if info.converged and options.estimate and (estimate_if is None
                                                  or estimate_if(problem, u, prm)):
         problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
-                                                            options, _iterate, solved)
+                                                            options, _iterate, solved,
+                                                            estimate_if)
         info.iterations += mesh_error.iterations
         if finer is not None:
             rounds = mesh_error.rounds
