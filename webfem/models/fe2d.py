@@ -129,45 +129,47 @@ def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D,
     return None
 
 
-#: The most unknowns of the edge strip's start on the periodic cell's x mesh
+#: The most unknowns of the edge strip's start on the periodic cell's own x mesh
 #: (:func:`_cell_on_mesh`): half the estimate's cap, so that its first bisection along x
 #: still fits.
 CELL_MESH_DOFS = 0.5 * MAX_DOFS
 
 
 def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
-    """The edge strip's start on the periodic cell's x mesh: ``problem``
-    (on the 1-D start's x nodes) moved to the cell answer's x nodes, coarsened (every other
-    node, the wrap edges kept) until it has at most :data:`CELL_MESH_DOFS` unknowns, but no
-    coarser than the 1-D start's; and the cell solved on those x nodes from its answer
-    carried over (plain Newton: the same film, only a coarser mesh). Returns ``(problem,
-    cell problem, cell state)``, or None (the cell did not converge there or is
-    inadmissible: the cell's answer itself starts ``problem``).
+    """The edge strip's start: the periodic cell solved on the strip's x nodes from its
+    answer carried over (plain Newton: the same film on another mesh), so that the web the
+    strip starts from is a discrete solution there. First on ``problem``'s x nodes (the 1-D
+    start's); where the cell does not converge there, on the cell answer's own x nodes
+    coarsened (every other node, the wrap edges kept) until the strip has at most
+    :data:`CELL_MESH_DOFS` unknowns, with ``problem`` moved to them. Returns ``(problem,
+    cell problem, cell state)``, or None (neither converged or both are inadmissible: the
+    cell's answer itself starts ``problem``).
 
-    Why: the cell's x mesh is where its refinement rounds ended, so the strip needs fewer
-    rounds of its own there (the edges add the rest), and a web solved on the strip's own x
-    nodes is a consistent start: a PET strip started on the 93 x cells of the 1-D start from
-    the cell's answer on 10,544 did not converge, and the depth continuation that followed
-    took 200+ s on its 81,455 unknowns (from the cell solved on its coarsened x mesh, 3,351
-    unknowns, the strip's 93,131 converged directly). (A narrow web's
-    full width keeps the 1-D start's x nodes: on the cell's it solved more unknowns, 34,783
-    against 26,475 on a 5 mm pitch, for the same answer to 1e-8.)"""
+    Why: a PET strip started on the 93 x cells of the 1-D start from the cell's answer on
+    10,544 did not converge, and the depth continuation that followed took 200+ s on its
+    81,455 unknowns; from the cell solved on its coarsened x mesh (3,351 unknowns) the
+    strip's 93,131 converged directly. The 1-D start's x nodes come first: a foil strip on
+    the cell's (coarsened) x nodes solved 150,841 unknowns where it had solved 95,161, for
+    the same answer to 1e-11."""
     e = 0.5 * prm.beta
     per_node = problem.n_dofs / problem.X.size
     X = cell.X
     while X is not None and X.size * per_node > CELL_MESH_DOFS:
         X = coarser_nodes(X, (-e, e))
-    if X is None or X.size <= problem.X.size:
-        X = problem.X
-    on = cell if np.array_equal(X, cell.X) else cell.variant(X=X)
-    uc = u if on is cell else cell.transfer(u, prm, on)
-    if on is not cell:
-        with stage(f"{NAME} the periodic cell on the strip's x mesh, {on.n_dofs:,} unknowns"):
-            uc, info = on.plain_newton(uc, prm, options.tol, options.max_iter, DIRECT_STEPS)
-        if not info.converged or admissibility(case, on, uc, prm):
-            return None
-    moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
-    return moved, on, uc
+    tried = [problem.X] + ([X] if X is not None and X.size > problem.X.size else [])
+    for X in tried:
+        on = cell if np.array_equal(X, cell.X) else cell.variant(X=X)
+        uc = u
+        if on is not cell:
+            with stage(f"{NAME} the periodic cell on the strip's x mesh, {on.n_dofs:,} "
+                       "unknowns"):
+                uc, info = on.plain_newton(cell.transfer(u, prm, on), prm, options.tol,
+                                           options.max_iter, DIRECT_STEPS)
+            if not info.converged or admissibility(case, on, uc, prm):
+                continue
+        moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
+        return moved, on, uc
+    return None
 
 
 class _Film(Discretisation):
