@@ -361,6 +361,28 @@ class FoilBearing2D:
             return continuation.web_width(self, *self.line_start, prm, tol, max_iter, info)
         return u, info
 
+    def solve_near(self, u0, prm, options):
+        """Newton from ``u0``, a solved state carried over from another mesh of the same
+        problem, without :meth:`solve_newton`'s continuation fallback (the ambient grooves'
+        restart, cheap, is kept). Why: the mesh error estimate's finer mesh is a check of
+        the answer it is carried from; where Newton does not reach the discrete solution
+        near it, a continuation from the smooth roller on that finer mesh answers another
+        question at the cost of several solves on it (a resting board's 94,489-unknown
+        groove cell: 86 s of depth continuation that ended without an answer, where the
+        estimate's next remedy, its cells along x quartered, converged in 15 s).
+        Returns ``(u, SolveInfo)``."""
+        tol, max_iter = options.tol, options.max_iter
+        u, info = self.plain_newton(u0, prm, tol, max_iter,
+                                    DIRECT_STEPS if self.direct else 0)
+        if info.converged or not self.ambient_grooves:
+            return u, info
+        v, first = self.variant(ambient_grooves=False).solve_near(u0, prm, options)
+        if not first.converged:
+            return u, info
+        v[self.fixed] = 0.0
+        u, second = self.plain_newton(v, prm, tol, max_iter)
+        return u, second.after(first, "from the solved groove pressure")
+
     def solve_picard(self, u0, prm, options):
         """Picard with the film's coefficients frozen (:func:`webfem.fem.picard.
         frozen_coefficient_picard`); stops on the coupled residual norm, like Newton."""

@@ -30,7 +30,7 @@ from ..physics.validity import thin_film_check, wrap_length_check
 from ..progress import stage
 from ..result import Result, State
 from .admissible import admissibility, no_admissible_solution, through_thickness
-from .mesh_error import MeshError, estimate_mesh_error, release
+from .mesh_error import MAX_DOFS, MeshError, estimate_mesh_error, release
 from .outcome import Facts, build_result
 from .readout import errors_between, read_out
 from .refine import adapted_nodes, minimum
@@ -67,6 +67,11 @@ class Start:
     line: State | None = None
     #: objects of the solving process the result keeps for inspection (dropped on pickling)
     kept: dict = field(default_factory=dict)
+    #: the start is the web of an answer already on the branch the safe start follows (the
+    #: periodic groove cell's of the same case, reached by the depth continuation or checked
+    #: itself): an answer from it that rests is the web's edges' doing, not a spurious
+    #: branch, and is not checked against the safe start again (:func:`_higher_branch`)
+    checked: bool = False
 
 
 class Discretisation:
@@ -177,10 +182,15 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
         if settle and rounds == 0:
             # read only when a round follows (most continued points refine nothing)
             before = read_out(case, problem, u, prm)
-        rounds += 1
+        if problem.n_dofs * X.size / problem.X.size > MAX_DOFS:
+            # beyond the mesh error estimate's cap (the unknowns grow with the x nodes): a
+            # round it could not check (an edge strip of PET went 93,131 -> 172,083 ->
+            # 327,207 unknowns, 5+ GB)
+            break
         finer, u_fine = disc.remeshed(problem, u, prm, X, getattr(problem, "Z", None),
                                       options)
         release(problem)         # only its nodes and state are read again
+        rounds += 1
         with stage(f"{disc.name} refinement round {rounds}, {finer.n_dofs:,} unknowns"):
             u, info_fine = _iterate(finer, u_fine, prm, options)
         problem, info = finer, info_fine.after(info)
@@ -196,8 +206,14 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
 
 
 def solve_fe(disc: Discretisation, case: Case, options, initial=None,
-             raise_on_failure: bool = True) -> Result:
+             raise_on_failure: bool = True, estimate_if=None) -> Result:
     """Solve ``case`` with the model ``disc`` and its ``options``; see the module text.
+
+    ``estimate_if(problem, u, prm) -> bool``: whether the answer's mesh error is estimated
+    (with ``options.estimate``; None: always). A caller that solves a problem only to decide
+    what to solve next (the periodic groove cell before an edge strip) skips the estimate
+    and the refinement it asks for where the answer will not be returned, and stops that
+    refinement once a refined answer no longer would be.
 
     ``initial``: a result (or its :class:`~webfem.result.State`) to start from; a start
     from it that fails or ends inadmissible is retried from a cold start, so the answer never
@@ -223,9 +239,11 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
     mesh_error = MeshError()
     # a coarse solve the start made (fe2d's cold start): the estimate's, not the result's
     solved = start.kept.pop("coarse", None)
-    if info.converged and options.estimate:
+    if info.converged and options.estimate and (estimate_if is None
+                                                 or estimate_if(problem, u, prm)):
         problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
-                                                            options, _iterate, solved)
+                                                            options, _iterate, solved,
+                                                            estimate_if)
         info.iterations += mesh_error.iterations
         if finer is not None:
             rounds = mesh_error.rounds
@@ -314,7 +332,7 @@ def _answer(disc, case, prm, options, restart):
         info.converged = False
         info.reason = f"converged to an inadmissible field: {why}"
     elif info.converged and _rests(case, problem, u, prm) and not _must_rest(case) \
-            and not start.kept.get(REST_CHECKED):
+            and not start.checked:
         start, problem, u, info = _higher_branch(disc, case, prm, options, start, problem, u,
                                                  info)
     return start, problem, u, info, options

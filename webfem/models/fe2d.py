@@ -32,7 +32,7 @@ from . import continued, fe1d
 from ..progress import stage
 from .admissible import admissibility
 from .driver import REST_CHECKED, Discretisation, Start, solve_fe
-from .mesh_error import bisected_nodes, coarser_nodes
+from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -129,6 +129,49 @@ def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D,
     return None
 
 
+#: The most unknowns of the edge strip's start on the periodic cell's own x mesh
+#: (:func:`_cell_on_mesh`): half the estimate's cap, so that its first bisection along x
+#: still fits.
+CELL_MESH_DOFS = 0.5 * MAX_DOFS
+
+
+def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
+    """The edge strip's start: the periodic cell solved on the strip's x nodes from its
+    answer carried over (plain Newton: the same film on another mesh), so that the web the
+    strip starts from is a discrete solution there. First on ``problem``'s x nodes (the 1-D
+    start's); where the cell does not converge there, on the cell answer's own x nodes
+    coarsened (every other node, the wrap edges kept) until the strip has at most
+    :data:`CELL_MESH_DOFS` unknowns, with ``problem`` moved to them. Returns ``(problem,
+    cell problem, cell state)``, or None (neither converged or both are inadmissible: the
+    cell's answer itself starts ``problem``).
+
+    Why: a PET strip started on the 93 x cells of the 1-D start from the cell's answer on
+    10,544 did not converge, and the depth continuation that followed took 200+ s on its
+    81,455 unknowns; from the cell solved on its coarsened x mesh (3,351 unknowns) the
+    strip's 93,131 converged directly. The 1-D start's x nodes come first: a foil strip on
+    the cell's (coarsened) x nodes solved 150,841 unknowns where it had solved 95,161, for
+    the same answer to 1e-11."""
+    e = 0.5 * prm.beta
+    per_node = problem.n_dofs / problem.X.size
+    X = cell.X
+    while X is not None and X.size * per_node > CELL_MESH_DOFS:
+        X = coarser_nodes(X, (-e, e))
+    tried = [problem.X] + ([X] if X is not None and X.size > problem.X.size else [])
+    for X in tried:
+        on = cell if np.array_equal(X, cell.X) else cell.variant(X=X)
+        uc = u
+        if on is not cell:
+            with stage(f"{NAME} the periodic cell on the strip's x mesh, {on.n_dofs:,} "
+                       "unknowns"):
+                uc, info = on.plain_newton(cell.transfer(u, prm, on), prm, options.tol,
+                                           options.max_iter, DIRECT_STEPS)
+            if not info.converged or admissibility(case, on, uc, prm):
+                continue
+        moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
+        return moved, on, uc
+    return None
+
+
 class _Film(Discretisation):
     """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
     the start and the X mesh, already refined where the film is thin."""
@@ -198,17 +241,30 @@ class _Film(Discretisation):
         if informed and self.cell is not None and problem.grooves is not None \
                 and problem.web_edges and self.cell.case == case:
             # the cell's web (its film pressure is made consistent with it before the
-            # coupled steps: ``direct`` stays False)
-            web = problem.start_from_line(self.cell.state("problem"), self.cell.state("state"),
-                                          prm, pressure=False)
+            # coupled steps: ``direct`` stays False), solved on the x mesh of the start
+            cell_p, cell_u = self.cell.state("problem"), self.cell.state("state")
+            laid = _cell_on_mesh(case, prm, options, cell_p, cell_u, problem) \
+                if problem.strip else None
+            if laid is not None:
+                problem, cell_p, cell_u = laid
+                problem.line_start, problem.direct = (p1, u1), False
+                u0 = problem.start_from_line(p1, u1, prm)
+            web = problem.start_from_line(cell_p, cell_u, prm, pressure=False)
             u0[problem.nP:] = web[problem.nP:]
-            kept["cell_web"] = "the web of the periodic cell's answer"
+            kept["cell_web"] = "the web of the periodic cell's answer" + (
+                ", solved on this x mesh" if laid is not None else "")
+            # not checked against the safe start again: a strip from the cell's web (its
+            # edges lower the gap: a board strip 3.8 nm deep where the cell flies at 0.11
+            # um; the check re-solved its 0.14 M unknowns along the depth continuation for
+            # 100-180 s and kept the direct answer), and a full width from a cell that
+            # rests and whose own safe start rests as low or lower (the web's edges only
+            # vent the film; #55, #143: the check took 11-33 s of 17-45 and kept the answer)
+            checked = problem.strip
             if self.cell.state(REST_CHECKED) and self.cell["h_min"] < 0.0:
-                # the cell rests, and its safe start (the depth continuation from the
-                # smooth film) rests as low or lower: the web's edges only vent the film,
-                # so the edges' domain is not checked again (#55, #143 of the envelope: a
-                # resting narrow board's check took 11-33 s of 17-45 and kept the answer)
                 kept[REST_CHECKED] = "the periodic cell's answer rests too, checked"
+                checked = True
+            return Start(problem, u0, info=spent, line=one.restart, kept=kept,
+                         checked=checked)
         return Start(problem, u0, info=spent, line=one.restart, kept=kept)
 
     def _coarse_first(self, case: Case, prm, options: FE2DOptions, p1, u1):
@@ -481,8 +537,11 @@ def solve_case(case: Case, options: FE2DOptions, *, initial: Result | None = Non
     try:
         if pattern is None or options.grooves != "auto":
             return solve_fe(FILM, case, options, initial, raise_on_failure)
-        return solve_grooved(case, pattern, options, lambda o, raising, cell=None: _with_cell(
-            cell, lambda: solve_fe(FILM, case, o, initial, raising and raise_on_failure)))
+        return solve_grooved(case, pattern, options,
+                             lambda o, raising, cell=None, estimate_if=None: _with_cell(
+                                 cell, lambda: solve_fe(FILM, case, o, initial,
+                                                        raising and raise_on_failure,
+                                                        estimate_if)))
     finally:
         FILM.forget_lines()
 
