@@ -101,7 +101,7 @@ def _newton_options(options):
 
 
 def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, options,
-                        iterate, solved=None, wanted=None) -> tuple:
+                        iterate, solved=None, estimate_if=None) -> tuple:
     """The estimate for the solved state ``u`` of ``problem``, refining while it exceeds
     ``options.error_tol``. ``iterate(problem, u0, prm, options) -> (u, info)`` solves on a
     mesh. Returns ``(problem, u, info_or_None, MeshError)``: the answer's problem and state
@@ -116,7 +116,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     from that state instead of from the answer carried over (the same discrete solution, to
     Newton's tolerance, in fewer steps: none when it is still converged).
 
-    ``wanted(problem, u, prm) -> bool``: whether the answer on a refined mesh is still the
+    ``estimate_if(problem, u, prm) -> bool``: whether the answer on a refined mesh is still the
     one its caller returns (None: always); the refinement stops once it is not (a groove
     cell whose refined answer asks for the edge strip after all: a resting board's cell went
     on to 0.19 M unknowns, 50 s, before the strip that replaced it)."""
@@ -214,7 +214,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
                           and not across and out.rounds == 0 else None)
         problem, u, here, Z, last_info = fine, uf, finer, getattr(fine, "Z", None), info
         out.rounds += 1
-        if wanted is not None and not wanted(problem, u, prm):
+        if estimate_if is not None and not estimate_if(problem, u, prm):
             out.notes.append("the mesh error estimate was not refined further: on this mesh "
                              "the answer is no longer the one returned")
             break
