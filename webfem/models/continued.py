@@ -6,10 +6,10 @@ start mesh, the refinement where the film is thin) and its state (Newton from th
 solution). Along a path of nearby cases (a sweep) the previous point has both: its final
 mesh, moved with the scaled geometry (:func:`moved_nodes`), and its state, extrapolated
 along the path from the states before it on that mesh (solved there, or carried over to it
-where the mesh changed: :func:`predicted`), start this point's Newton. When the previous point kept its solution on its coarser mesh
-(``State.coarse``, the error estimate's), the 2-D model solves this point's coarser mesh
-first and starts the fine Newton from it (a two-grid start: :meth:`webfem.models.fe2d.
-_Film._two_grid`). Nothing here decides the answer: the driver still refines where the film
+where the mesh changed: :func:`predicted`), start this point's Newton. When the previous
+point kept its solution on its coarser mesh (``State.coarse``, the error estimate's), the
+2-D model solves this point's coarser mesh first and starts the fine Newton from it (a
+two-grid start: :meth:`webfem.models.fe2d._Film._two_grid`). Nothing here decides the answer: the driver still refines where the film
 is thin, the mesh error estimate still confirms (or refines) the mesh, and a start that
 fails or ends inadmissible is retried cold (:func:`webfem.models.driver.solve_fe`).
 
@@ -30,8 +30,8 @@ from ..fem.outcome import SolveInfo
 from ..result import State
 from .refine import adapted_nodes
 
-__all__ = ["moved_nodes", "secant_factor", "extrapolation_weights", "mesh_key", "continued_state", "predicted",
-           "similar", "near", "planned_nodes", "start_info",
+__all__ = ["moved_nodes", "secant_factor", "extrapolation_weights", "mesh_key",
+           "continued_state", "predicted", "similar", "near", "planned_nodes", "start_info",
            "MAX_SECANT", "MESH_SLACK"]
 
 #: The secant extrapolates at most this many previous steps ahead (a sweep's next step is

@@ -57,14 +57,22 @@ def _cell_estimated(case: Case, pattern: GroovePattern, options: FE2DOptions, na
     and a board cell (bisected up to 0.19-0.21 M unknowns) before strips that started from
     the cell's web on their own, coarser x meshes anyway."""
     def wanted(problem, u, prm) -> bool:
-        if narrow:
-            return False
-        vent = min(max(_venting(case, problem, u), 0.0), 1.0)
-        film = 1.0 - (read_out(case, problem, u, prm).contact_share or 0.0)
-        estimate = edge_effect(case.lam, pattern.pitch, vent, film)
-        return choose_domain("auto", pattern, case.lam, vent, estimate,
-                             options.edge_tol) == "cell"
+        return not narrow and _domain(case, pattern, options, _venting(case, problem, u),
+                                      read_out(case, problem, u, prm).contact_share)[0] == "cell"
     return wanted
+
+
+def _domain(case: Case, pattern: GroovePattern, options: FE2DOptions, vent: float,
+            contact_share: float | None) -> tuple[str, dict]:
+    """The domain auto solves after a converged periodic cell whose venting is ``vent`` and
+    contact share ``contact_share``, and why (:func:`domain_text`'s keywords): the cell
+    where the edges' estimate (:func:`edge_effect`) is within ``edge_tol``."""
+    vent = min(max(vent, 0.0), 1.0)
+    film = 1.0 - (contact_share or 0.0)
+    why = {"vent": vent, "film": film, "tol": options.edge_tol,
+           "estimate": edge_effect(case.lam, pattern.pitch, vent, film)}
+    return choose_domain("auto", pattern, case.lam, vent, why["estimate"],
+                         options.edge_tol), why
 
 
 def domain_text(case: Case, domain: str, pattern: GroovePattern, **why) -> str:
@@ -137,16 +145,12 @@ def solve_grooved(case: Case, pattern: GroovePattern, options: FE2DOptions,
         r = solve(options.replace(grooves="full"), True, cell)
         return _said(r, domain_text(case, "full", pattern, narrow=True, cell=_converged(cell),
                                     answer=r), t0)
-    why = {"vent": 0.0}
     if cell is not None and cell.summary.converged:
-        vent = min(max(venting(case, cell), 0.0), 1.0)
-        film = 1.0 - (cell["contact_share"] or 0.0)
-        why = {"vent": vent, "film": film, "tol": options.edge_tol,
-               "estimate": edge_effect(case.lam, pattern.pitch, vent, film)}
+        domain, why = _domain(case, pattern, options, venting(case, cell),
+                              cell["contact_share"])
     else:
-        cell = None
-    domain = choose_domain("auto", pattern, case.lam, why["vent"], why.get("estimate"),
-                           options.edge_tol)
+        cell, why = None, {"vent": 0.0}
+        domain = choose_domain("auto", pattern, case.lam, 0.0, None, options.edge_tol)
     if domain == "cell":
         return _said(cell, domain_text(case, "cell", pattern, **why), t0)
     width = strip_width(pattern.pitch, why["vent"])
