@@ -336,12 +336,12 @@ class FoilBearing2D:
         info = SolveInfo.of(out)
         return out.u, info.after(SolveInfo.of(first)) if first is not None else info
 
-    def solve_newton(self, u0, prm, options):
+    def solve_newton(self, u0, prm, options, continued: bool = True):
         """Newton on film + web (``options.tol``, ``options.max_iter``); on failure: with
-        ambient grooves from the solved groove pressure, on a grooved roller continuation in
-        the groove depth, on a smooth one (when the problem knows the 1-D state it started
-        from, ``line_start``) continuation in the web width (:mod:`webfem.fem.continuation`).
-        Returns ``(u, SolveInfo)``."""
+        ambient grooves from the solved groove pressure, then (``continued``) on a grooved
+        roller continuation in the groove depth, on a smooth one (when the problem knows the
+        1-D state it started from, ``line_start``) continuation in the web width
+        (:mod:`webfem.fem.continuation`). Returns ``(u, SolveInfo)``."""
         tol, max_iter = options.tol, options.max_iter
         u, info = self.plain_newton(u0, prm, tol, max_iter,
                                     DIRECT_STEPS if self.direct else 0)
@@ -349,11 +349,14 @@ class FoilBearing2D:
             return u, info
         if self.ambient_grooves:
             # the solved groove pressure is close to ambient in deep grooves: start there
-            v, first = self.variant(ambient_grooves=False).solve_newton(u0, prm, options)
+            v, first = self.variant(ambient_grooves=False).solve_newton(u0, prm, options,
+                                                                        continued)
             if first.converged:
                 v[self.fixed] = 0.0
                 u, second = self.plain_newton(v, prm, tol, max_iter)
                 return u, second.after(first, "from the solved groove pressure")
+            return u, info
+        if not continued:
             return u, info
         if self.grooves is not None:
             return continuation.groove_depth(self, u0, prm, tol, max_iter, info)
@@ -363,7 +366,7 @@ class FoilBearing2D:
 
     def solve_near(self, u0, prm, options):
         """Newton from ``u0``, a solved state carried over from another mesh of the same
-        problem, without :meth:`solve_newton`'s continuation fallback (the ambient grooves'
+        problem: :meth:`solve_newton` without its continuation fallback (the ambient grooves'
         restart, cheap, is kept). Why: the mesh error estimate's finer mesh is a check of
         the answer it is carried from; where Newton does not reach the discrete solution
         near it, a continuation from the smooth roller on that finer mesh answers another
@@ -371,17 +374,7 @@ class FoilBearing2D:
         groove cell: 86 s of depth continuation that ended without an answer, where the
         estimate's next remedy, its cells along x quartered, converged in 15 s).
         Returns ``(u, SolveInfo)``."""
-        tol, max_iter = options.tol, options.max_iter
-        u, info = self.plain_newton(u0, prm, tol, max_iter,
-                                    DIRECT_STEPS if self.direct else 0)
-        if info.converged or not self.ambient_grooves:
-            return u, info
-        v, first = self.variant(ambient_grooves=False).solve_near(u0, prm, options)
-        if not first.converged:
-            return u, info
-        v[self.fixed] = 0.0
-        u, second = self.plain_newton(v, prm, tol, max_iter)
-        return u, second.after(first, "from the solved groove pressure")
+        return self.solve_newton(u0, prm, options, continued=False)
 
     def solve_picard(self, u0, prm, options):
         """Picard with the film's coefficients frozen (:func:`webfem.fem.picard.
