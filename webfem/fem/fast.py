@@ -35,7 +35,7 @@ import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["BasisData", "Pattern", "pattern_of", "test_layout", "contract_layout",
-           "PATTERNS_KEPT"]
+           "contract_laid", "PATTERNS_KEPT"]
 
 class BasisData:
     """A scikit-fem basis read once: per local basis function, its values, gradients and
@@ -267,4 +267,10 @@ def contract_layout(layout, trial) -> np.ndarray:
         a = np.einsum("sjeq->ejsq", trial).reshape(ne, nj, ns * nq)
     else:
         a = np.einsum("jeq->ejq", trial)
+    return contract_laid(layout, a)
+
+
+def contract_laid(layout, a) -> np.ndarray:
+    """:func:`contract_layout` with the trial side already laid out, ``a`` of shape
+    (element, trial function, [term x] point): (test function, trial function, element)."""
     return np.matmul(a, layout).transpose(2, 1, 0)

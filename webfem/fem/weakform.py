@@ -48,7 +48,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 
-from .fast import contract_layout, pattern_of, test_layout
+from .fast import contract_laid, contract_layout, pattern_of, test_layout
 
 __all__ = ["Term", "Block", "WeakForm", "Space", "Part", "FastForm", "skfem_forms", "coefficient",
            "OPERATORS"]
@@ -304,8 +304,8 @@ class FastForm:
                         del term
                     lay = layout if len(used) == len(ops) else test_layout(
                         np.stack([part.spaces[key[0]].ops[o] for o in used]))
-                    piece = np.matmul(trial.reshape(trial.shape[0], trial.shape[1], -1),
-                                      lay).transpose(2, 1, 0)
+                    piece = contract_laid(lay, trial.reshape(trial.shape[0],
+                                                             trial.shape[1], -1))
                     del trial
                     total = piece if total is None else total + piece
                 out.append(total)
