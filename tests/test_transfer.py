@@ -14,7 +14,8 @@ from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, Elem
 
 from webfem.fem.hermite import LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
-from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_mesh,
+from webfem.fem import transfer
+from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_basis, film_mesh,
                                  interpolate_values,
                                  quadrature_matrices, tensor_interpolation,
                                  web_values, width_nodes)
@@ -33,6 +34,47 @@ def _hermite(X, x):
     out[rows, 2 * k + 2] = -2 * s**3 + 3 * s**2
     out[rows, 2 * k + 3] = (s**3 - s**2) * L
     return out
+
+
+@pytest.mark.parametrize("order", [1, 2])
+@pytest.mark.parametrize("web_edges, strip", [(True, False), (False, False), (True, True)])
+def test_film_basis_on_a_moved_mesh_is_scikit_fems(order, web_edges, strip):
+    """A film mesh and basis on nodes moved from a mesh of the same size built before (what
+    :data:`transfer.TOPOLOGIES` shares with it) equal scikit-fem's built from scratch on the
+    moved nodes to the last bit: boundaries, DOFs and their locations, values, gradients
+    and weights."""
+    from skfem import MeshQuad
+
+    X = graded_nodes(3.0, 2.0, level=0)
+    Z = width_nodes(5.0, half=True) + (2.0 if strip else 0.0)
+    elem, intorder = (ElementQuad2(), 4) if order == 2 else (ElementQuad1(), 3)
+    transfer.TOPOLOGIES.clear()
+    film_basis(film_mesh(X, Z, web_edges, strip), elem, intorder)
+    # moved: stretched unevenly in X (the cells' shapes change), scaled in Z
+    Xm, Zm = X * 1.3 + 0.01 * X**2, Z * 0.7
+    mesh = film_mesh(Xm, Zm, web_edges, strip)
+    assert mesh.t is transfer.TOPOLOGIES[(X.size, Z.size)]["t"]    # the shared topology
+    ours = film_basis(mesh, elem, intorder)
+    ref_mesh = MeshQuad.init_tensor(Xm, Zm)
+    x0, x1, z0, z1 = Xm[0], Xm[-1], Zm[0], Zm[-1]
+    bnd = {"ends": lambda p: np.isclose(p[0], x0) | np.isclose(p[0], x1)}
+    if web_edges:
+        bnd["edges"] = lambda p: np.isclose(p[1], z1)
+    bnd["symmetry"] = (lambda p: np.isclose(p[1], z0)) if web_edges else \
+        (lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1))
+    ref = Basis(ref_mesh.with_boundaries(bnd), elem, intorder=intorder)
+    assert set(mesh.boundaries) == set(ref.mesh.boundaries)
+    for name in ref.mesh.boundaries:
+        assert np.array_equal(mesh.boundaries[name], ref.mesh.boundaries[name])
+        assert np.array_equal(ours.get_dofs(name).all(), ref.get_dofs(name).all())
+    assert np.array_equal(ours.element_dofs, ref.element_dofs)
+    assert np.array_equal(ours.doflocs, ref.doflocs)
+    assert np.array_equal(ours.dx, ref.dx)
+    for a, b in zip(ours.basis, ref.basis):
+        assert np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
+        assert np.array_equal(a[0].grad, b[0].grad)
+    # the mapping answers as scikit-fem's again once the basis is built
+    assert "invDF" not in vars(ours.mapping)
 
 
 @pytest.mark.parametrize("order", [1, 2])

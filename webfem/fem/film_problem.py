@@ -33,7 +33,8 @@ from .newton import PatternSolver, newton
 from .outcome import SolveInfo
 from .picard import frozen_coefficient_picard
 from .systems import FilmSystem, width_load
-from .transfer import film_mesh, interpolate_values, quadrature_matrices, tensor_interpolation
+from .transfer import (film_basis, film_mesh, interpolate_values, quadrature_matrices,
+                       tensor_interpolation)
 
 __all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS", "strip_weights"]
 
@@ -117,8 +118,10 @@ class FoilBearing2D:
         # each new point set: 9 % of a 24-point speed sweep's time with scikit-fem's)
         self.wbasis = Basis(self.line, HermiteLine(), intorder=6)
         self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
-        self.fbasis = Basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
-                            intorder=4 if order == 2 else 3)
+        # scikit-fem's basis, with the DOF numbering of a mesh of the same topology (a
+        # moved mesh: a continued point's) shared
+        self.fbasis = film_basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
+                                 intorder=4 if order == 2 else 3)
         self.T = quadrature_matrices(self.fbasis, self.wbasis)
         self.nP, self.nW = self.fbasis.N, self.wbasis.N
         fixed_p = self.fbasis.get_dofs({"ends", "edges"} if self.web_edges

@@ -22,11 +22,23 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["width_nodes", "film_mesh", "quadrature_matrices", "basis_matrices", "web_values",
-           "cellwise_matrices", "interpolate_values", "tensor_interpolation"]
+__all__ = ["width_nodes", "film_mesh", "film_basis", "quadrature_matrices", "basis_matrices",
+           "web_values", "cellwise_matrices", "interpolate_values", "tensor_interpolation",
+           "TOPOLOGIES_KEPT"]
+
+#: Film mesh topologies kept (:func:`film_mesh`): a continued sweep point builds its
+#: problems on the previous point's meshes moved (46 of the 67 problems of the base case's
+#: 24-point speed sweep have a topology built before, among at most 4 recent ones).
+TOPOLOGIES_KEPT = 4
+#: (nodes in X, nodes in Z) -> what a tensor film mesh of that size has that does not depend
+#: on where its nodes are: its cells ``t``, facets, their maps (``t2f``, ``f2t``) and, per
+#: element, scikit-fem's DOF numbering (:func:`film_basis`)
+TOPOLOGIES: dict = {}
 
 
 def width_nodes(lam: float, level: int = 0, half: bool = True, fine: float = 0.25,
@@ -54,20 +66,88 @@ def film_mesh(X: np.ndarray, Z: np.ndarray, web_edges: bool = True, strip: bool 
     ``web_edges=False`` (the periodic cell of a grooved roller): no ``edges``, both sides
     are ``symmetry``; ``strip`` (a wide web's edge strip): Z[0] is ``symmetry``, Z[-1] the
     web's edge."""
-    from skfem import MeshQuad
-
     x0, x1, z0, z1 = X[0], X[-1], Z[0], Z[-1]
     bnd = {"ends": lambda p: np.isclose(p[0], x0) | np.isclose(p[0], x1)}
     if not web_edges:
         bnd["symmetry"] = lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1)
-        return MeshQuad.init_tensor(np.asarray(X, float),
-                                    np.asarray(Z, float)).with_boundaries(bnd)
+        return _tensor_mesh(X, Z, bnd)
     inner = z0 == 0.0 or strip
     bnd["edges"] = ((lambda p: np.isclose(p[1], z1)) if inner else
                     (lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1)))
     if inner:
         bnd["symmetry"] = lambda p: np.isclose(p[1], z0)
-    return MeshQuad.init_tensor(np.asarray(X, float), np.asarray(Z, float)).with_boundaries(bnd)
+    return _tensor_mesh(X, Z, bnd)
+
+
+def _tensor_mesh(X, Z, boundaries):
+    """``MeshQuad.init_tensor(X, Z).with_boundaries(boundaries)`` with the facets and their
+    maps of a mesh of the same size built before (:data:`TOPOLOGIES`): they depend only on
+    the cells, and computing them (a sort of all the cells' facets, twice: scikit-fem's
+    ``with_boundaries`` returns a copy without them) was most of the cost of a mesh. The
+    boundaries are still found from this mesh's nodes."""
+    from skfem import MeshQuad
+
+    mesh = MeshQuad.init_tensor(np.asarray(X, float), np.asarray(Z, float))
+    key = (np.size(X), np.size(Z))
+    topo = TOPOLOGIES.get(key)
+    if topo is None or not np.array_equal(topo["t"], mesh.t):
+        topo = {"t": mesh.t, "facets": mesh.facets, "t2f": mesh.t2f, "f2t": mesh.f2t,
+                "boundary": mesh.boundary_facets()}
+        if len(TOPOLOGIES) >= TOPOLOGIES_KEPT:
+            TOPOLOGIES.pop(next(iter(TOPOLOGIES)))
+        TOPOLOGIES[key] = topo
+    _attach(mesh, topo)
+    # scikit-fem's facets_satisfying(test, boundaries_only=True), the boundary facets kept
+    midp = mesh.p[:, topo["facets"]].mean(axis=1)
+    found = {name: np.intersect1d(np.nonzero(test(midp))[0].astype(np.int32),
+                                  topo["boundary"])
+             for name, test in boundaries.items()}
+    out = dataclasses.replace(mesh, _boundaries=found)
+    _attach(out, topo)
+    return out
+
+
+def _attach(mesh, topo) -> None:
+    # scikit-fem computes these on first use into the same attributes (skfem.Mesh.facets)
+    mesh.t = topo["t"]
+    mesh._facets, mesh._t2f, mesh._f2t = topo["facets"], topo["t2f"], topo["f2t"]
+
+
+def film_basis(mesh, elem, intorder: int):
+    """``skfem.Basis(mesh, elem, intorder=intorder)`` on a mesh from :func:`film_mesh`, to the
+    last bit, built with less work: scikit-fem's DOF numbering (``skfem.Dofs``) shared by the
+    meshes of one topology (it depends only on the cells and facets), and the inverse of the
+    mapping's Jacobian at the quadrature points computed once instead of once per local
+    function (scikit-fem's ``ElementH1.gbasis`` asks the mapping for it each time; the
+    nine of Q2 were a third of a basis's cost)."""
+    from skfem import Basis
+    from skfem.assembly import Dofs
+
+    topo = next((t for t in TOPOLOGIES.values() if t["t"] is mesh.t), None)
+    name = type(elem).__name__
+    if topo is None:
+        dofs = Dofs(mesh, elem)
+    else:
+        dofs = topo.get(name)
+        if dofs is None:
+            # numbered on a copy of the mesh without its caches: a Dofs keeps its mesh, and
+            # this one's mapping will hold the Jacobians at the quadrature points
+            bare = dataclasses.replace(mesh)
+            _attach(bare, topo)
+            dofs = topo[name] = Dofs(bare, elem)
+    mapping = mesh._mapping()
+    invDF, last = mapping.invDF, []
+
+    def once(X, tind=None):
+        # the same points (the basis's quadrature) every call: the first answer, read only
+        if tind is not None or not last or last[0] is not X:
+            last[:] = [X, invDF(X, tind)]
+        return last[1]
+    mapping.invDF = once
+    try:
+        return Basis(mesh, elem, mapping=mapping, intorder=intorder, dofs=dofs)
+    finally:
+        del mapping.invDF
 
 
 def cellwise_matrices(values: list[np.ndarray], dofs: np.ndarray,
