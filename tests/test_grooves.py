@@ -331,9 +331,14 @@ def test_a_narrow_webs_full_width_starts_from_the_cells_web(monkeypatch):
     now also from the periodic cell's web (issue 23: the groove map's narrow designs at
     40 m/s took 26-60 iterations from the 1-D web, 17-19 from the cell's): the same answer
     to Newton's tolerance on the same mesh, in no more steps, and the summary states the
-    change from the cell."""
+    change from the cell. By default the cell's web is first solved on the full width's
+    mesh coarsened (:func:`fe2d._coarse_full_width`): the same answer again, its cheaper
+    steps counted too."""
     from webfem.groove_sizing import _grooved
     case = _grooved(Case(), 5e-3, 0.8, 0.25e-3).updated({"roller.speed": 20.0})
+    coarse_first = fe2d.solve(case)
+    assert "on a coarser mesh first" in coarse_first.diagnostics.solver["cell_web"]
+    monkeypatch.setattr(fe2d, "_coarse_full_width", lambda *args: None)
     informed = fe2d.solve(case)
     said = informed.summary.groove_domain
     assert "too narrow for an edge strip" in said and "against the periodic cell" in said
@@ -341,10 +346,11 @@ def test_a_narrow_webs_full_width_starts_from_the_cells_web(monkeypatch):
     monkeypatch.setattr(fe2d, "_with_cell", lambda cell, solve: solve())
     plain = fe2d.solve(case)
     assert "cell_web" not in plain.diagnostics.solver
-    assert plain["n_dofs"] == informed["n_dofs"]
+    assert plain["n_dofs"] == informed["n_dofs"] == coarse_first["n_dofs"]
     assert informed["iterations"] <= plain["iterations"]
     for q in ("h_center", "h_min", "mu", "contact_share"):
         assert informed[q] == pytest.approx(plain[q], rel=1e-7, abs=1e-12), q
+        assert coarse_first[q] == pytest.approx(plain[q], rel=1e-7, abs=1e-12), q
 
 
 def test_the_depth_continuation_ends_at_once_from_near_the_depth():
