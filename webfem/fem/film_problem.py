@@ -49,19 +49,6 @@ START_RTOL = 1e-4
 DIRECT_STEPS = 6
 
 
-#: A direct attempt (:meth:`FoilBearing2D.plain_newton`) that ran out of steps is continued
-#: when its residual fell at least this many times over them and still falls.
-DIRECT_GAIN = 1e3
-
-
-def _falling(out) -> bool:
-    """Whether Newton ``out`` stopped at its step limit in Newton's regime: its residual
-    :data:`DIRECT_GAIN` times below its first and lowered by the last step."""
-    h = out.history
-    return (out.reason == "iteration limit" and len(h) >= 2 and np.isfinite(h[-1])
-            and h[-1] * DIRECT_GAIN <= h[0] and h[-1] < h[-2])
-
-
 @dataclass(frozen=True)
 class FilmConfig:
     """What a 2-D problem is made of besides its nodes: the pressure element ``order`` (1 or
@@ -343,27 +330,14 @@ class FoilBearing2D:
         web first (a film-only solve: it rescues starts whose pressure is far from the
         web's). ``direct_budget > 0``: first try that many coupled steps straight from
         ``u0`` (a state carried over from a solved mesh, or the 1-D solution, needs no
-        film-only solve); where they run out while the residual still falls fast
-        (:data:`DIRECT_GAIN`), as many again from where they stopped before the film-only
-        restart from ``u0``. Returns ``(u, SolveInfo)``."""
+        film-only solve). Returns ``(u, SolveInfo)``."""
         first = self.newton(u0, prm, tol, direct_budget) if direct_budget else None
         if first is not None and first.converged:
             return first.u, SolveInfo.of(first)
-        tried = SolveInfo.of(first) if first is not None else None
-        if first is not None and _falling(first):
-            # out of budget while converging: the same iteration a few steps on rather than
-            # a restart from u0 (the error estimate's mesh coarser along x of a 3.1 cm PET
-            # full width, envelope #147: 6 direct steps 2.1 -> 1e-4, then 1 film-only + 6
-            # coupled from u0 again; now 10 steps in all, 2.6 -> 1.7 s); on failure the
-            # restart follows as before
-            more = self.newton(first.u, prm, tol, direct_budget)
-            tried = SolveInfo.of(more).after(tried)
-            if more.converged:
-                return more.u, tried
         out = self.newton(self.consistent_pressure(u0, prm, rtol=START_RTOL), prm, tol,
                           max_iter)
         info = SolveInfo.of(out)
-        return out.u, info.after(tried) if tried is not None else info
+        return out.u, info.after(SolveInfo.of(first)) if first is not None else info
 
     def solve_newton(self, u0, prm, options, continued: bool = True):
         """Newton on film + web (``options.tol``, ``options.max_iter``); on failure: with
