@@ -19,7 +19,8 @@ def add_parser(subparsers) -> None:
         description=textwrap.fill(
             "fit build: solve the first --points points of the scrambled Sobol design over "
             "the fitted model's domain with fe2d into --store/campaign.csv (each row saved as "
-            "it finishes: a run interrupted continues where it stopped when run again), fit "
+            "it finishes: a run interrupted continues where it stopped when run again, and "
+            "a run with more --points extends the same table), fit "
             "the training points (every fifth point is held out and states the errors) and "
             "write the coefficients to --out. --fit-only fits what the store holds.", 88))
     p.add_argument("action", choices=("build",), help="what to do (build)")
