@@ -32,7 +32,7 @@ from . import continued, fe1d
 from ..progress import stage
 from .admissible import admissibility
 from .driver import REST_CHECKED, Discretisation, Start, solve_fe
-from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes
+from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes, kept_nodes
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -184,10 +184,8 @@ def _coarse_full_width(case: Case, prm, options: FE2DOptions, problem, u0):
     unknowns (3.4-3.7 s) became 33 on 7,251 and 7 on 27,247 (1.5 s), the same answer to
     1e-12; it did not help to solve the cell on the full width's x nodes first (as the strip
     does, :func:`_cell_on_mesh`): still 35 damped steps."""
-    e = 0.5 * prm.beta
-    Xc = coarser_nodes(problem.X, (-e, e))
-    Zc = coarser_nodes(problem.Z, problem.grooves.edges(float(problem.Z[0]),
-                                                        float(problem.Z[-1])))
+    keep_x, keep_z = kept_nodes(problem, prm)
+    Xc, Zc = coarser_nodes(problem.X, keep_x), coarser_nodes(problem.Z, keep_z)
     if Xc is None or Zc is None:
         return None
     coarse = problem.variant(X=Xc, Z=Zc)

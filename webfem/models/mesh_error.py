@@ -33,7 +33,7 @@ from ..progress import stage
 from .admissible import admissibility
 from .readout import READ_QUANTITIES, errors_between, read_out
 
-__all__ = ["MeshError", "estimate_mesh_error", "coarser_nodes", "bisected_nodes",
+__all__ = ["MeshError", "estimate_mesh_error", "coarser_nodes", "bisected_nodes", "kept_nodes",
            "summary_keys", "MAX_DOFS"]
 
 #: The refinement the estimate asks for stops before a mesh of more unknowns than this (a
@@ -84,7 +84,7 @@ def bisected_nodes(nodes: np.ndarray) -> np.ndarray:
     return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])]))
 
 
-def _features(problem, prm: FoilParameters):
+def kept_nodes(problem, prm: FoilParameters):
     """Nodes that the coarser mesh must keep: the wrap edges in X, the land/groove edges in
     Z (the steps of the wrap pressure and of the gap lie on element edges)."""
     e = 0.5 * prm.beta
@@ -123,7 +123,7 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     out = MeshError()
     here = read_out(case, problem, u, prm)
     release(problem)       # solved: only its nodes and state are read from here on
-    keep_x, keep_z = _features(problem, prm)
+    keep_x, keep_z = kept_nodes(problem, prm)
     Z = getattr(problem, "Z", None)
     Xc = coarser_nodes(problem.X, keep_x)
     Zc = coarser_nodes(Z, keep_z) if Z is not None else None
