@@ -155,3 +155,13 @@ def test_the_cells_along_x_quartered_where_halving_them_fails(monkeypatch):
     true = true_errors(BASE, r, reference)
     for q in READ_QUANTITIES:
         assert true[q] <= r[f"error_{q}"] + reference[f"error_{q}"], (q, true[q])
+
+
+def test_the_worst_error_names_an_unmeasured_change_instead_of_failing():
+    """A note about an unconfirmed estimate whose changes could not be measured (None: no
+    answer on the coarser mesh either) said nothing and raised a TypeError (traceback to
+    the user: 1 mm newsprint on the base roller with free web ends, entry = 80)."""
+    from webfem.models.mesh_error import _worst
+
+    assert _worst({"h_center": None, "mu": 3e-3}) == "h_center unknown"
+    assert _worst({"h_center": 1e-4, "mu": 3e-3}) == "mu 0.003"

@@ -341,7 +341,8 @@ def _exceeds(errors, tol) -> bool:
 
 def _worst(errors) -> str:
     name = max(errors, key=lambda k: errors[k] if errors[k] is not None else np.inf)
-    return f"{name} {errors[name]:.2g}"
+    # None: no change could be measured for it (no coarser answer either)
+    return f"{name} {'unknown' if errors[name] is None else format(errors[name], '.2g')}"
 
 
 def _unconfirmed(out: MeshError, n: int, why: str, tol: float) -> None:
