@@ -280,3 +280,15 @@ def test_problem_cache_keeps_the_recent_meshes(monkeypatch):
     b = fe1d.solve(case)
     assert built == [] and b.state("problem") is a.state("problem")
     assert b["h_min"] == pytest.approx(a["h_min"], rel=1e-9)
+
+
+def test_a_stiff_web_warns_that_where_its_ends_are_held_moves_the_answer():
+    """The web is held on its nominal line at the ends of the entry and exit zones (Eq. 20);
+    a web whose bending length reaches a twentieth of the zones warns (the bundled board:
+    7.7 mm against 62 mm zones), a flexible one does not; longer zones end the warning."""
+    board = webfem.load_case(webfem.bundled.find_case("board"))
+    r = fe1d.solve(board)
+    assert any(w.startswith("bending: the web's bending length") for w in r["warnings"])
+    assert not any("bending length" in w for w in fe1d.solve(FLYING)["warnings"])
+    longer = fe1d.solve(board, entry=160.0)
+    assert not any("bending length" in w for w in longer["warnings"])

@@ -506,7 +506,8 @@ class _Film(Discretisation):
 
     def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
         warnings = ((f"beta = {case.beta:.3g} < 6: the wrap is shorter than the entry and "
-                     "exit zones; no uniform central gap exists",) if case.beta < 6.0 else ())
+                     "exit zones; no uniform central gap exists",) if case.beta < 6.0 else ()) \
+            + fe1d.held_ends_warning(case, prm, problem.X)
         common = dict(n_cells=int(problem.mesh.nelements), width_cells=len(problem.Z) - 1,
                       land_fraction=case.land_fraction, warnings=warnings)
         if problem.grooves is None:
