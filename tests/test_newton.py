@@ -155,3 +155,18 @@ def test_chord_steps_do_not_spend_the_newton_budget():
     F, J, calls, n = _problem()
     fast = nw.newton(F, J, np.full(n, 3.0), tol=1e-12, max_iter=7)
     assert fast.converged and fast.iterations == 8 and calls["J"] == 6
+
+
+def test_a_jacobian_with_nan_entries_ends_the_solve_without_factorising_it(capfd):
+    """A non-finite Jacobian at a finite residual (a stiff web's extreme iterate) is a failed
+    step, said so; factorised it failed as singular after SuperLU's BLAS calls printed
+    "illegal value" lines to stderr."""
+    def F(u):
+        return u - 1.0
+
+    def J(u):
+        return sp.csr_matrix(np.array([[np.nan, 0.0], [0.0, 1.0]]))
+
+    out = nw.newton(F, J, np.zeros(2), tol=1e-12, max_iter=5)
+    assert not out.converged and out.reason == "Jacobian not finite"
+    assert "illegal" not in capfd.readouterr().err

@@ -316,6 +316,10 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
         last = Jm = None
         try:
             Jm = J(u)
+            if not np.all(np.isfinite(getattr(Jm, "data", Jm))):
+                # factorised, it fails as singular after SuperLU's BLAS calls print "illegal
+                # value" lines to stderr (a stiff web's extreme iterates: 1 mm newsprint)
+                return NewtonResult(u, False, it - 1, norm, history, "Jacobian not finite")
             last = (solver or SOLVER).factor(Jm, free)
             du = last(-r)
         except RuntimeError as err:  # singular factor
