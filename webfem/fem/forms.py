@@ -174,8 +174,12 @@ def streamline_diffusion(Hf, D, hx, prm):
     psi, dpsi = upwind_switch(bh2 * Hf * inv / UPWIND_PE)
     dpsi = np.where(ok, dpsi, 0.0)
     nu = bh2 * Hf * psi
-    # t = bh2 Hf / (D UPWIND_PE): dpsi/dD = -(t dpsi/dt) / D, dpsi/dHf = (t dpsi/dt) / Hf
-    return nu, -bh2 * Hf * dpsi * inv, bh2 * (psi + dpsi)
+    # t = bh2 Hf / (D UPWIND_PE): dpsi/dD = -(t dpsi/dt) / D, dpsi/dHf = (t dpsi/dt) / Hf;
+    # where full upwinding is reached (dpsi = 0) nu no longer depends on D, even where 1/D
+    # overflows (a denormal conductance: inf x 0 made the Jacobian NaN)
+    with np.errstate(invalid="ignore", over="ignore"):
+        nu_D = np.where(dpsi > 0.0, -(bh2 * Hf * inv) * dpsi, 0.0)
+    return nu, nu_D, bh2 * (psi + dpsi)
 
 
 def film_coefficients(H, P, PX, PZ, prm, newton: bool = True, hx=None) -> dict:
