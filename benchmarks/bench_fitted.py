@@ -139,7 +139,9 @@ def maps(out: str) -> None:
     E = np.empty(V.shape)
     for i, g in enumerate(G):
         case = fc.case_of_groups(dict(zip(fg.GROUPS, g)))
-        v = fitted.read_profile(case, pr["H"][i], pr["P"][i], pr["H_min"][i], pr["s_min"][i])
+        v = fitted.read_profile(case, pr["H"][i], pr["P"][i], pr["H_min"][i], pr["s_min"][i],
+                                *(None if pr.get(k) is None else pr[k][i]
+                                  for k in ("H_center", "share")))
         for j, q in enumerate(fitted.QUANTITIES):
             E[i, j] = abs(v[q] - V[i, j]) / error_scale(case, q, V[i, j])
     fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), sharey=True)

@@ -241,3 +241,20 @@ def test_the_blocked_kernel_is_the_generic_formula():
     np.testing.assert_allclose(k(c), (np.hstack([np.ones((40, 1)), c]) @ k.trend
                                       + matern52(c, c, k.scales) @ k.weights) * k.y_std
                                + k.y_mean, rtol=1e-9, atol=1e-9)   # at the centres (r = 0)
+
+
+def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():
+    """The shipped fit answers h_center, h_min and the contact share from their own kernels
+    (docs/fit.md), h_min capped by the profile's smallest node; the profile still gives the
+    fields."""
+    fit = fitted.coefficients()
+    assert set(fit["scalar_names"]) == {"h_center", "h_min", "contact_share"}
+    pr = fitted.predict(fg.groups_of_columns(fg.case_columns(VARIED)))
+    assert np.all(pr["H_min"] <= pr["H"].min(axis=1))
+    assert np.all((pr["share"] >= 0.0) & (pr["share"] <= 1.0))
+    for i, case in enumerate(VARIED):
+        r = webfem.solve(case, model="fitted")
+        assert r["h_center"] == pytest.approx(pr["H_center"][i] * case.h_scale, rel=1e-12)
+        assert r["h_min"] == pytest.approx(pr["H_min"][i] * case.h_scale, rel=1e-12)
+        assert r["contact_share"] == pytest.approx(pr["share"][i], rel=1e-12, abs=1e-15)
+        np.testing.assert_allclose(r.fields.h, pr["H"][i] * case.h_scale, rtol=1e-12)

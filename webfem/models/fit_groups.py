@@ -41,7 +41,7 @@ from ..fem.scaling import FoilParameters
 from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
-           "baseline", "gap_to_fit", "fit_to_gap",
+           "baseline", "gap_to_fit", "fit_to_gap", "gap_to_asinh", "asinh_to_gap",
            "outside", "physics_refusal", "group_array", "case_columns", "groups_of_columns",
            "COLUMNS"]
 
@@ -122,6 +122,20 @@ def gap_to_fit(H, S, H_c):
 def fit_to_gap(y, S, H_c):
     """The scaled gap of the fit's variable ``y`` (inverse of :func:`gap_to_fit`)."""
     return H_c + S * (np.exp(y) - FLOOR_SIGMAS)
+
+
+def gap_to_asinh(H, S, H_c):
+    """The variable the centre and smallest gaps are fitted in on their own: asinh((H -
+    H_c) / S). Like :func:`gap_to_fit` it is the gap's relative change far above the
+    roughness and its change in sigmas near the contact gap, but it has no floor: a stiff
+    web (large Dn) rests several sigma below H_c, up to 100 sigma in the campaign, where
+    the floor of :func:`gap_to_fit` cut the answer off (docs/fit.md)."""
+    return np.arcsinh((H - H_c) / S)
+
+
+def asinh_to_gap(y, S, H_c):
+    """The scaled gap of the variable ``y`` (inverse of :func:`gap_to_asinh`)."""
+    return H_c + S * np.sinh(y)
 
 
 #: The physics switches the campaign solved with (the defaults); any other is refused.

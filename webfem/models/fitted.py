@@ -3,10 +3,11 @@
 The fit (:mod:`webfem.models.fit_kernel`, coefficients in ``fitted_coefficients.npz``, made
 by ``webfem fit build``) gives, from the eight groups of a smooth-roller case
 (:mod:`webfem.models.fit_groups`), the scaled gap H and film pressure P at fixed positions
-along the wrap and the smallest gap and where. The friction, the regimes, the contact share,
-mu and delta_T are then computed from that profile with the physics functions the FE models
-use (:func:`webfem.physics.friction.friction_for`, the contact law), so the friction
-constants and the speeds add no dimensions to the fit.
+along the wrap and the smallest gap and where; the centre and smallest gaps and the contact
+share are also fitted on their own, which the summary reports (measured more accurate than
+the profile's). The friction, the regimes, mu and delta_T are computed from the profile
+with the physics functions the FE models use (:func:`webfem.physics.friction.friction_for`,
+the contact law), so the friction constants and the speeds add no dimensions to the fit.
 
 Its domain is the box of groups the campaign sampled and the default full physics on a
 smooth roller; outside it the model refuses (:class:`OutsideDomain`, naming the group, its
@@ -66,15 +67,23 @@ def coefficients(path: str | None = None) -> dict:
                                    "them with `webfem fit build`")
     with np.load(p, allow_pickle=False) as data:
         d = {k: data[k] for k in data.files}
+    names = tuple(str(n) for n in d.get("scalar_names", ()))
+    scalars, j = [], 0
+    while f"s{j}_centres" in d:
+        scalars.append(Kernel.from_arrays(d, f"s{j}"))
+        j += 1
     return {"kernel": Kernel.from_arrays(d, "k"), "lo": d["lo"], "hi": d["hi"],
             "edges": d["region_edges"], "errors": d["region_errors"],
-            "physics": str(d["physics"]), "info": str(d["info"])}
+            "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
+            "scalar_names": names}
 
 
 def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
     """The scaled profile of groups ``G`` ((n, 8)): ``H`` and ``P`` (n, nodes), ``H_min``,
     ``s_min`` (position over the wrap, -1/2 entry) and ``region`` (index into the stated
-    errors). No domain check (:func:`fit_groups.outside_rows`)."""
+    errors); and, where the fit has them (else None), the centre gap ``H_center`` and the
+    contact ``share`` fitted on their own, ``H_min`` then also from its own fit (capped by
+    the profile's smallest node). No domain check (:func:`fit_groups.outside_rows`)."""
     fit = fit or coefficients()
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     Y = fit["kernel"](x)
@@ -88,9 +97,24 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
     y_min = Y[:, 2 * n] + fg.gap_to_fit(base_min, S[:, 0], H_c[:, 0])
     H = fg.fit_to_gap(y_nodes, S, H_c)
     H_min = np.minimum(fg.fit_to_gap(y_min, S[:, 0], H_c[:, 0]), H.min(axis=1))
+    H_center = share = None
+    if fit.get("scalars"):
+        # the quantities fitted on their own, each with its own length scales and the gaps
+        # in a variable without a floor (fit_groups.gap_to_asinh): measured better than
+        # the profile's values on the hold-out set (docs/fit.md)
+        Ys = np.column_stack([k(x) for k in fit["scalars"]])
+        own = dict(zip(fit["scalar_names"], Ys.T))
+        s0, c0 = S[:, 0], H_c[:, 0]
+        H_center = fg.asinh_to_gap(own["h_center"] + fg.gap_to_asinh(base[:, n // 2], s0, c0),
+                                   s0, c0)
+        # capped by the profile's smallest node, as the profile's own minimum is
+        H_min = np.minimum(fg.asinh_to_gap(own["h_min"] + fg.gap_to_asinh(base_min, s0, c0),
+                                           s0, c0), H.min(axis=1))
+        share = np.clip(own["contact_share"], 0.0, 1.0)
     region = np.searchsorted(fit["edges"], H_min / S[:, 0])
     return {"H": H, "P": Y[:, n:2 * n], "H_min": H_min,
-            "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region}
+            "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region,
+            "H_center": H_center, "share": share}
 
 
 def _stacked(v: dict[str, np.ndarray]) -> SimpleNamespace:
@@ -109,13 +133,16 @@ def _stacked(v: dict[str, np.ndarray]) -> SimpleNamespace:
               sigma=c["sigma"], p_bar=c["p_bar"], U_slide=c["U_slide"])
 
 
-def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.ndarray]:
+def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min, H_center=None,
+                  share=None) -> dict[str, np.ndarray]:
     """Gaps, friction, regimes and contact share of many cases (their
     :func:`fit_groups.case_columns` ``v``) from their scaled profiles (rows of ``H``, ``P``),
     with the FE models' physics functions evaluated on arrays (readout.py does the same on
     the FE solution): one value per case (``regime`` as the index into REGIMES), and the gap
     ``h``, the local friction ``loc``, the absolute pressure ``p`` and its gradient ``dpdx``
-    along the wrap, a row per case."""
+    along the wrap, a row per case. ``H_center`` (scaled) and ``share``: the centre gap and
+    the contact share where they were fitted on their own (:func:`predict`), instead of the
+    profile's."""
     case = _stacked(v)
     hs, xs, pb, beta = (v[k][:, None] for k in ("h_scale", "x_scale", "p_bar", "beta"))
     p_a = case.air.ambient_pressure
@@ -128,12 +155,14 @@ def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.
     Pc = contact_pressure(h, case.web.modulus_thickness, case.sigma, case.web.thickness,
                           case.friction.distribution) / pb
     # a share of the load: a fitted suction may make the film's part nearly cancel contact's
-    share = np.clip(np.sum(W * Pc, axis=1) / np.maximum(np.sum(W * (P + Pc), axis=1), 1e-300),
-                    0.0, 1.0)
+    if share is None:
+        share = np.clip(np.sum(W * Pc, axis=1) / np.maximum(np.sum(W * (P + Pc), axis=1),
+                                                            1e-300), 0.0, 1.0)
     shares = np.stack([np.sum(W * (loc["regime"] == k), axis=1) for k in range(3)], axis=1)
     c = len(fg.NODES) // 2
     h_min = H_min * hs[:, 0]
-    return {"h_center": h[:, c], "h_inlet": h[:, 0], "h_outlet": h[:, -1], "h_min": h_min,
+    h_center = h[:, c] if H_center is None else H_center * hs[:, 0]
+    return {"h_center": h_center, "h_inlet": h[:, 0], "h_outlet": h[:, -1], "h_min": h_min,
             "x_min": s_min * beta[:, 0] * xs[:, 0], "mu": np.sum(W * loc["mu"], axis=1),
             "contact_share": share, "share_boundary": shares[:, 0],
             "share_mixed": shares[:, 1], "share_fluid": shares[:, 2],
@@ -141,11 +170,12 @@ def read_profiles(v: dict[str, np.ndarray], H, P, H_min, s_min) -> dict[str, np.
             "compression": np.maximum(0.0, -np.minimum(h.min(axis=1), h_min))}
 
 
-def read_profile(case: Case, H, P, H_min, s_min) -> dict:
+def read_profile(case: Case, H, P, H_min, s_min, H_center=None, share=None) -> dict:
     """:func:`read_profiles` of one case: its numbers, its regime's name, and ``h`` and
     ``loc`` along the wrap."""
     out = read_profiles(fg.case_columns([case]), np.atleast_2d(H), np.atleast_2d(P),
-                        np.atleast_1d(H_min), np.atleast_1d(s_min))
+                        np.atleast_1d(H_min), np.atleast_1d(s_min),
+                        *(None if a is None else np.atleast_1d(a) for a in (H_center, share)))
     one = {k: a[0] for k, a in out.items() if k != "loc"}
     one.update(regime=REGIMES[int(one["regime"])], loc={k: a[0] for k, a in out["loc"].items()})
     return one
@@ -160,7 +190,8 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     """The results of ``cases`` (their columns ``v``, their predicted profiles ``pr``):
     everything evaluated on arrays, then one summary and one set of fields (rows of the
     arrays) per case; ``solve_time_s`` is left 0 for the caller."""
-    r = read_profiles(v, pr["H"], pr["P"], pr["H_min"], pr["s_min"])
+    r = read_profiles(v, pr["H"], pr["P"], pr["H_min"], pr["s_min"], pr.get("H_center"),
+                      pr.get("share"))
     traction = traction_summaries(cases, r["mu"], r["contact_share"])
     errors = fit["errors"][pr["region"]]
     lam, beta = v["lam"], v["beta"]
