@@ -22,7 +22,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-__all__ = ["Kernel", "matern52", "thin_plate", "KINDS"]
+__all__ = ["Kernel", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
 
 _SQRT5 = np.sqrt(5.0)
 #: From this many points the kernel runs its matrix products on one BLAS thread: blocks of a
@@ -37,7 +37,7 @@ def _controller():
     return ThreadpoolController()
 
 
-def _blas_one_thread():
+def blas_one_thread():
     """A context in which BLAS uses one thread (threadpoolctl, a dependency)."""
     return _controller().limit(limits=1, user_api="blas")
 
@@ -80,7 +80,7 @@ class Kernel:
         if self.kind == "matern52":
             if len(x) < ONE_THREAD_FROM:
                 return self._matern52(x, chunk)
-            with _blas_one_thread():
+            with blas_one_thread():
                 return self._matern52(x, chunk)
         out = np.empty((len(x), self.weights.shape[1]))
         for i in range(0, len(x), chunk):     # bounded memory: chunk x centres at a time

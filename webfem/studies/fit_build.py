@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..models import fit_groups as fg
-from ..models.fit_kernel import Kernel, _blas_one_thread, matern52, thin_plate
+from ..models.fit_kernel import Kernel, blas_one_thread, matern52, thin_plate
 from ..models.readout import error_scale
 
 __all__ = ["targets", "scalar_targets", "fit_kernel", "holdout_errors", "REGION_EDGES",
@@ -243,7 +243,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
     # on one BLAS thread: the optimiser's path, hence the coefficients, then do not depend
     # on the machine's thread count (the rebuild is bit for bit), and on a loaded machine
     # one thread is the faster
-    with _blas_one_thread():
+    with blas_one_thread():
         kernel = fit_kernel(x, y, restarts=restarts, trend=False, hyper_points=HYPER_POINTS)
         scalars = [fit_kernel(x, ys[:, list(cols)], restarts=restarts, trend=False,
                               hyper_points=HYPER_POINTS) for cols in SCALAR_KERNELS]
