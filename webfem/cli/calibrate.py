@@ -5,7 +5,6 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..calibrate import calibrate, read_measurements
 from ..units import ROLES, convert, display, unit_label
 from .common import (HELP_FORMATTER, add_case_arguments, add_units_argument, case_from,
                      model_options, options_epilog, output_folder, print_json)
@@ -41,6 +40,10 @@ def _pm(fit, name: str, units: str = "si") -> str:
 
 
 def run(args) -> int:
+    # imported here: the calibration's statistics (scipy.stats) took 0.3-0.5 s of every
+    # command's start, as each builds the parser of all of them
+    from ..calibrate import calibrate, read_measurements
+
     case = case_from(args)
     options = model_options(args)
     rows = read_measurements(args.data)

@@ -192,15 +192,24 @@ class Pattern:
         return A
 
 
-#: The patterns built last, by the bytes of the blocks' DOF maps (at most
-#: :data:`PATTERNS_KEPT`): a continued sweep point's mesh is the previous point's moved (the
-#: same cells and DOFs at other coordinates), so the same pattern. A pattern is a function
-#: of the DOF maps alone: one kept is the one built again, and sharing its index arrays lets
-#: :class:`webfem.fem.newton.PatternSolver` reuse its ordering plan too (a pure cache: no
-#: answer depends on what was built before). A kept pattern's plans go with it
+#: The patterns used last, by the bytes of the blocks' DOF maps, the least recently used
+#: dropped first (:func:`pattern_of`): a continued sweep point's mesh is the previous point's
+#: moved (the same cells and DOFs at other coordinates), so the same pattern. A pattern is a
+#: function of the DOF maps alone: one kept is the one built again, and sharing its index
+#: arrays lets :class:`webfem.fem.newton.PatternSolver` reuse its ordering plan too (a pure
+#: cache: no answer depends on what was built before). A kept pattern's plans go with it
 #: (:attr:`Pattern.plans`).
 PATTERNS: dict = {}
-PATTERNS_KEPT = 4
+#: At most this many patterns are kept ...
+PATTERNS_KEPT = 8
+#: ... and beyond the :data:`PATTERNS_ALWAYS` used last, only while all kept hold at most
+#: :data:`PATTERNS_BYTES` (their arrays and plans). Why: a cold fe2d solve of the base case
+#: uses five patterns (the 1-D start's two meshes, the coarse mesh, the one its gap asks for,
+#: the answer's), and four kept first in first out dropped each before it was asked for
+#: again: every repeated cold solve built all five and their seven plans again (the bytes
+#: bound keeps the memory of large meshes' patterns where four of them put it).
+PATTERNS_ALWAYS = 4
+PATTERNS_BYTES = 64 * 2**20
 
 
 def pattern_of(dof_pairs, shape) -> Pattern:
@@ -214,16 +223,33 @@ def pattern_of(dof_pairs, shape) -> Pattern:
             h.update(repr(a.shape).encode())
             h.update(a.tobytes())
     key = h.digest()
-    pattern = PATTERNS.get(key)
+    pattern = PATTERNS.pop(key, None)
     if pattern is None:
         blocks = [(np.broadcast_to(r[:, None, :], (r.shape[0],) + c.shape),
                    np.broadcast_to(c[None, :, :], (r.shape[0],) + c.shape))
                   for r, c in dof_pairs]
         pattern = Pattern(blocks, shape)
-        if len(PATTERNS) >= PATTERNS_KEPT:
+        while len(PATTERNS) >= PATTERNS_KEPT or (
+                len(PATTERNS) >= PATTERNS_ALWAYS
+                and sum(_nbytes(p) for p in PATTERNS.values()) + _nbytes(pattern)
+                > PATTERNS_BYTES):
             PATTERNS.pop(next(iter(PATTERNS)))
-        PATTERNS[key] = pattern
+    PATTERNS[key] = pattern                 # the most recently used last
     return pattern
+
+
+def _nbytes(value) -> int:
+    """The bytes of the arrays in ``value`` (a :class:`Pattern` with its plans, or the
+    tuples, dicts and arrays they hold)."""
+    if isinstance(value, np.ndarray):
+        return value.nbytes
+    if isinstance(value, Pattern):
+        return _nbytes((value.slot, value.indices, value.indptr, value.plans))
+    if isinstance(value, dict):
+        return sum(_nbytes(v) for v in value.values())
+    if isinstance(value, (tuple, list)):
+        return sum(_nbytes(v) for v in value)
+    return 0
 
 
 def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

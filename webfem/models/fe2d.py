@@ -451,14 +451,19 @@ class _Film(Discretisation):
         if settled is None:
             return None
         coarse, uc, info = settled
-        # the previous point's fine-minus-coarse difference, on this point's fine mesh
-        detail = before - coarse_first.transfer(up, prm, fine)
-        if coarse is not coarse_first:
+        if coarse is coarse_first:
+            # the previous fine state plus the coarse change carried over: the transfers are
+            # linear, so the same start as the coarse state carried over plus the previous
+            # point's fine-minus-coarse difference, with one transfer fewer
+            u1 = before + coarse.transfer(uc - up, prm, fine)
+        else:
+            # the previous point's fine-minus-coarse difference, on this point's fine mesh
+            detail = before - coarse_first.transfer(up, prm, fine)
             other = coarse.variant(X=bisected_nodes(coarse.X), Z=fine.Z)
             if not np.array_equal(coarser_nodes(other.X, (-e, e)), coarse.X):
                 return None
             detail, fine = fine.transfer(detail, prm, other), other
-        u1 = coarse.transfer(uc, prm, fine) + detail
+            u1 = coarse.transfer(uc, prm, fine) + detail
         u1[fine.fixed] = 0.0
         if not np.all(np.isfinite(u1)):
             return None
