@@ -57,11 +57,12 @@ def line_state(order, seed=0):
     return pb, u, v
 
 
-def fd_errors(pb, u, blocks, seed=1, t=1e-4, newton=True):
+def fd_errors(pb, u, blocks, seed=1, t=1e-4, newton=True, prm=PRM):
     """Relative error of J v against the central difference of the residual, for the whole
     residual and for each effect's part, along random directions in each block of DOFs."""
+    PRM = prm
     rng = np.random.default_rng(seed)
-    variants = {"all": None, **WITHOUT}
+    variants = {"all": None, **WITHOUT, **({"spans": dict(span=0.0)} if prm.span else {})}
     out = {}
     scale = {}
     for block, idx in blocks.items():
@@ -113,6 +114,32 @@ def test_jacobian_2d(order):
     errors = fd_errors(pb, u, {"P": np.arange(pb.nP), "W": np.arange(pb.nP, pb.n_dofs),
                                "both": np.arange(pb.n_dofs)})
     assert_small(errors)
+
+
+#: The web held through spans beyond the domain (wrap.span): 30 units from each wrap edge,
+#: 20 beyond the test's zones of 10.
+PRM_SPAN = replace(PRM, span=30.0)
+
+
+def test_jacobian_with_the_spans_springs():
+    """The spans' springs on the end deflections (:mod:`webfem.fem.ends`), 1-D (P2) and
+    2-D (Q2), the end deflections free: their part (the residual less that of the web held
+    at the domain's ends) is differentiated exactly too."""
+    p0, _, _ = line_state(2)
+    pb = FoilBearing1D(p0.X, order=2, spans=True)
+    u, info = pb.solve_newton(pb.initial_guess(PRM_SPAN), PRM_SPAN)
+    assert info.converged, info.reason
+    assert np.all(np.abs(u[pb.iW_ends]) > 0.0)        # the ends move: free, on springs
+    v = u * (1.0 + 1e-2 * np.random.default_rng(3).standard_normal(u.size))
+    v[pb.fixed] = 0.0
+    assert_small(fd_errors(pb, v, {"W": pb.iW_all, "both": np.arange(pb.n_dofs)},
+                           prm=PRM_SPAN))
+    p2 = FoilBearing2D(pb.X, width_nodes(CASE.lam, level=0, half=True), order=2, spans=True)
+    w = p2.start_from_line(pb, u, PRM_SPAN)
+    w = w * (1.0 + 1e-2 * np.random.default_rng(4).standard_normal(w.size))
+    w[p2.fixed] = 0.0
+    assert_small(fd_errors(p2, w, {"W": np.arange(p2.nP, p2.n_dofs),
+                                   "both": np.arange(p2.n_dofs)}, prm=PRM_SPAN))
 
 
 @pytest.mark.parametrize("order", sorted(GAP_1D), ids=lambda o: f"P{o}")

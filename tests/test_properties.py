@@ -59,7 +59,7 @@ DIMENSIONS = {
     "air.mean_free_path": (1, 0, 0),
     "roller.groove_pitch": (1, 0, 0), "roller.groove_width": (1, 0, 0),
     "roller.groove_depth": (1, 0, 0),
-    "friction.speed_constant": (1, 0, -1),
+    "friction.speed_constant": (1, 0, -1), "wrap.span": (1, 0, 0),
 }
 #: Numeric keys without a unit.
 DIMENSIONLESS = {"wrap.angle_deg", "friction.mu_cc"}

@@ -251,12 +251,20 @@ class Web(Section):
 
 @dataclass(frozen=True)
 class Wrap(Section):
-    """Wrap ``angle_deg`` B in degrees, 0.1 <= B < 360."""
+    """Wrap ``angle_deg`` B in degrees, 0.1 <= B < 360, and the free ``span`` [m] from each
+    wrap edge to the neighbouring roller (left out: the web is held at the ends of the FE
+    models' entry and exit zones, the paper's Eq. 20)."""
 
     _name = "wrap"
     angle_deg: float = field(default=60.0, metadata=_num("deg", 0.0, 360.0,
                                                           doc="wrap angle B",
                                                           real=(0.1, None)))
+    span: float | None = field(default=None, metadata=_num(
+        "m", 0.0, doc="free span from each wrap edge to the neighbouring roller, where the "
+        "web is held on its nominal line (the FE models: a straight, unloaded web from the "
+        "end of their entry or exit zone to there)",
+        absent="the web held at the ends of the entry and exit zones (the paper's Eq. 20)",
+        real=(1e-3, 100.0)))
 
 
 @dataclass(frozen=True)

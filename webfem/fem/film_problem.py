@@ -25,7 +25,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 from skfem import Basis, BilinearForm, ElementQuad1, ElementQuad2
 
-from . import continuation, forms
+from . import continuation, ends, forms
 from .grooves import GroovePattern
 from .hermite import HermiteLine, LineProbes
 from .mesh import line_mesh
@@ -69,6 +69,7 @@ class FilmConfig:
     web_edges: bool = True
     ambient_grooves: bool = False
     strip: bool = False
+    spans: bool = False
 
     def __post_init__(self):
         if self.order not in (1, 2):
@@ -102,9 +103,9 @@ class FoilBearing2D:
 
     def __init__(self, X: np.ndarray, Z: np.ndarray, order: int = 2,
                  grooves: GroovePattern | None = None, web_edges: bool = True,
-                 ambient_grooves: bool = False, strip: bool = False):
+                 ambient_grooves: bool = False, strip: bool = False, spans: bool = False):
         self.config = FilmConfig(order, grooves, bool(web_edges), ambient_grooves,
-                                 bool(strip))
+                                 bool(strip), bool(spans))
         self.X, self.Z = np.asarray(X, float), np.asarray(Z, float)
         self.order, self.grooves = order, grooves
         self.web_edges, self.ambient_grooves = self.config.web_edges, \
@@ -133,7 +134,10 @@ class FoilBearing2D:
         #: strip's innermost half land and groove)
         self.weight_q = strip_weights(grooves, self.Z, zq) if self.strip \
             else np.ones_like(zq)
-        fixed_w = self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP
+        # held at the domain's ends (Eq. 20), or through the spans beyond them (wrap.span:
+        # the end deflections are unknowns on springs, :mod:`webfem.fem.ends`)
+        fixed_w = (np.array([], dtype=np.int64) if self.config.spans
+                   else self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP)
         if self.ambient_grooves:
             zd = self.fbasis.doflocs[1]
             off = np.abs(zd - grooves.pitch * np.round(zd / grooves.pitch))
@@ -145,6 +149,9 @@ class FoilBearing2D:
         self.free = np.flatnonzero(is_free)          # np.setdiff1d's answer, without a sort
         self.iWv = self.wbasis.nodal_dofs[0] + self.nP      # web values at the nodes
         self.iWx = self.wbasis.nodal_dofs[1] + self.nP      # web slopes
+        px = self.line.p[0]
+        #: the web's deflection at the domain's entry and exit ends
+        self.iW_ends = self.iWv[[int(np.argmin(px)), int(np.argmax(px))]]
         self._mass, self._system, self._solver = None, None, None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
@@ -181,9 +188,9 @@ class FoilBearing2D:
         about 600 MB per result at 1.4e5 unknowns in a process that keeps results, a
         traction-loss search or a sweep)."""
         c = self.config
+        # every field of the configuration (a strip's or the spans' rebuilt as they were)
         return (FoilBearing2D, (self.X.copy(), self.Z.copy()),
-                dict(order=c.order, grooves=c.grooves, web_edges=c.web_edges,
-                     ambient_grooves=c.ambient_grooves))
+                dataclasses.asdict(c) | {"grooves": c.grooves})
 
     def _split(self, u):
         return u[:self.nP], u[self.nP:]
@@ -211,11 +218,17 @@ class FoilBearing2D:
 
     def residual(self, u, prm) -> np.ndarray:
         """The coupled residual."""
-        return self.system.residual(u, prm)
+        return ends.with_springs(self.system.residual(u, prm), u, self.iW_ends,
+                                 self._springs(prm))
 
     def jacobian(self, u, prm, newton: bool = True):
         """Exact Jacobian, or (``newton=False``) Picard's."""
-        return self.system.jacobian(u, prm, bool(newton))
+        return ends.jacobian_with_springs(self.system.jacobian(u, prm, bool(newton)),
+                                          self.iW_ends, self._springs(prm))
+
+    def _springs(self, prm) -> tuple[float, float]:
+        # held at the domain's ends, the end deflections are fixed at 0: no spring
+        return ends.end_springs(self.X, prm) if self.config.spans else (0.0, 0.0)
 
     # -- fields -------------------------------------------------------------------------------
     def at(self, X, dofs) -> np.ndarray:

@@ -38,7 +38,10 @@ class FoilParameters:
     land Pc(H) (:func:`webfem.fem.forms.web_coefficients`); flow 1: the air flows through the
     flow gap E[(H - z)+] instead of H with the floor (:func:`webfem.fem.forms.flow_gap`);
     couette: the factor of the Couette (entrainment) flux, 1 but on the film-strength path to
-    a resting web (:meth:`film_strength`).
+    a resting web (:meth:`film_strength`); span: the free span from each wrap edge to the
+    neighbouring roller, in X (0: the web held at the ends of the domain, Eq. 20; else the
+    problems hold it there through a straight span from the domain's ends,
+    :func:`span_stiffness`).
     """
 
     beta: float
@@ -56,6 +59,7 @@ class FoilParameters:
     land: float = 1.0
     flow: int = 0
     couette: float = 1.0
+    span: float = 0.0
 
     def __post_init__(self):
         if self.ds is None:     # the paper's sink unless told otherwise
@@ -86,6 +90,7 @@ class FoilParameters:
             floor=floor * case.sigma / case.h_scale,
             law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
             land=case.land_fraction, flow=1 if case.roughness_flow_model == "mean-gap" else 0,
+            span=0.0 if case.wrap.span is None else case.wrap.span / case.x_scale,
         )
 
     def as_form_args(self) -> dict:

@@ -36,7 +36,7 @@ import numpy as np
 
 from ..case import Case
 from ..errors import ConvergenceError, InputError
-from ..fem import forms
+from ..fem import ends, forms
 from ..fem.mesh import graded_nodes, refine_nodes
 from ..fem.meshfile import read_x_nodes
 from ..fem.scaling import FoilParameters
@@ -82,12 +82,12 @@ class ProblemCache:
         self.size = size
         self._problems: dict = {}
 
-    def __call__(self, X, order) -> FoilBearing1D:
+    def __call__(self, X, order, spans: bool = False) -> FoilBearing1D:
         X = np.asarray(X, float)
-        key = (X.size, float(X[0]), float(X[-1]), order, X.tobytes())
+        key = (X.size, float(X[0]), float(X[-1]), order, bool(spans), X.tobytes())
         problem = self._problems.pop(key, None)
         if problem is None:
-            problem = FoilBearing1D(X, order=order)
+            problem = FoilBearing1D(X, order=order, spans=spans)
             while len(self._problems) >= self.size:
                 self._problems.pop(next(iter(self._problems)))
         self._problems[key] = problem                # the most recently used last
@@ -130,8 +130,9 @@ class _Line(Discretisation):
         nodes = options.nodes
         if options.mesh is not None:
             nodes = read_x_nodes(options.mesh) / case.x_scale
-        return self.problems(_nodes(prm.beta, options.entry, options.level, nodes),
-                             options.order)
+        X = _nodes(prm.beta, options.entry, options.level, nodes)
+        check_span(case, X)
+        return self.problems(X, options.order, prm.span > 0.0)
 
     def start(self, case: Case, prm: FoilParameters, options: FE1DOptions,
               restart: State | None) -> Start:
@@ -182,7 +183,7 @@ class _Line(Discretisation):
 
     def remeshed(self, problem, u, prm, X, Z, options):
         """The problem on the nodes X (coarser or finer) and ``u`` carried over to it."""
-        other = self.problems(np.asarray(X, float), options.order)
+        other = self.problems(np.asarray(X, float), options.order, problem.spans)
         return other, _transfer(problem, u, prm, other)
 
     def mesh_text(self, problem, options) -> str:
@@ -204,6 +205,19 @@ class _Line(Discretisation):
 HELD_ENDS_SHARE = 0.05
 
 
+def check_span(case: Case, X) -> None:
+    """Refuse a ``wrap.span`` that does not reach past the domain's entry and exit zones
+    on the (scaled) nodes ``X`` (the FE models hold the web through the straight span
+    beyond them: :mod:`webfem.fem.ends`), naming the least span that does."""
+    if case.wrap.span is not None:
+        least = ends.shortest_span(X, case.beta)
+        if case.wrap.span / case.x_scale <= least:
+            raise InputError(
+                f"wrap.span = {case.wrap.span:g} m is out of range for this model: must be "
+                f"> {least * case.x_scale:.4g} m, the entry and exit zones it holds the web "
+                f"beyond ({least:.4g} R eps^(1/3)); a shorter option entry shortens them")
+
+
 def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
     """The warning that the web's ends, held on its nominal line at the ends of the entry
     and exit zones (w = 0, the paper's Eq. 20), move the answer: a web whose bending length
@@ -212,7 +226,7 @@ def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
     (an empty tuple) for flexible webs."""
     zone = min(-float(X[0]), float(X[-1])) - 0.5 * prm.beta
     bend = float(np.sqrt(max(prm.Dn, 0.0)))
-    if zone <= 0.0 or bend <= HELD_ENDS_SHARE * zone:
+    if prm.span > 0.0 or zone <= 0.0 or bend <= HELD_ENDS_SHARE * zone:
         return ()
     mm = 1e3 * case.x_scale
     return (f"bending: the web's bending length sqrt(D/T_eff) = {bend * mm:.3g} mm is "
@@ -220,7 +234,8 @@ def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
             "ends the web is held on its nominal line (w = 0, Eq. 20): where it is held "
             "moves the answer, and the stated errors do not include that. On the envelope "
             "benchmark's board points with Dn > 100 freeing the ends instead moved h_center, "
-            "h_min or mu by 7-106 % (docs/model.md, 'Where the web is held')",)
+            "h_min or mu by 7-106 % (docs/model.md, 'Where the web is held'); set wrap.span "
+            "(m, from the wrap edge to the neighbouring roller) to hold it there instead",)
 
 
 def line_mesh_text(X, options) -> str:

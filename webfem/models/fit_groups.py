@@ -150,6 +150,10 @@ def physics_refusal(case: Case) -> str | None:
     if case.grooved:
         return ("grooved roller: the fit covers smooth rollers only (the periodic cell adds "
                 "pitch, land fraction and depth groups); use fe2d")
+    if case.wrap.span is not None:
+        return (f"wrap.span = {case.wrap.span:g} m: the fit was trained with the web held at "
+                "the ends of the entry and exit zones (wrap.span left out) only; use fe1d or "
+                "fe2d")
     wanted = {key: (value, FIT_PHYSICS[key]) for key, value in (
         ("model.physics", case.model.physics), ("air.slip", case.air.slip),
         ("air.roughness_flow", case.air.roughness_flow), ("web.permeation", case.web.permeation),

@@ -16,7 +16,7 @@ import numpy as np
 from skfem import Basis, ElementLineP1, ElementLineP2
 
 from ..errors import InputError
-from ..fem import forms
+from ..fem import ends, forms
 from ..fem.hermite import Composite, HermiteLine, LineProbes
 from ..fem.mesh import line_mesh
 from ..fem.continuation import FIRST_TRY, eshel_elrod, film_strength
@@ -39,9 +39,11 @@ class FoilBearing1D:
     ----------
     X : node positions (scaled), from :func:`webfem.fem.mesh.graded_nodes`.
     order : 1 or 2, the Lagrange order of the film pressure.
+    spans : the web's end deflections are unknowns, held through the spans beyond the
+        domain (``wrap.span``, :mod:`webfem.fem.ends`); False: held at the ends (Eq. 20).
     """
 
-    def __init__(self, X: np.ndarray, order: int = 2):
+    def __init__(self, X: np.ndarray, order: int = 2, spans: bool = False):
         if order not in (1, 2):
             raise InputError(f"order = {order!r} is not valid: must be 1 or 2")
         self.X = np.asarray(X, float)
@@ -60,8 +62,13 @@ class FoilBearing1D:
         self.iP, self.iW_all = self.basis.split_indices()
         self.iW = self.basis.nodal_dofs[1]        # web deflection at the nodes
         self.iWx = self.basis.nodal_dofs[2]       # its slope
-        ends = self.basis.get_dofs({"left", "right"})
-        fixed = np.concatenate([ends.all("u^1"), ends.all("u^2")])
+        end_dofs = self.basis.get_dofs({"left", "right"})
+        self.spans = bool(spans)
+        #: the web's deflection at the domain's entry and exit ends
+        px = self.mesh.p[0]
+        self.iW_ends = self.iW[[int(np.argmin(px)), int(np.argmax(px))]]
+        fixed = np.concatenate([end_dofs.all("u^1")]
+                               + ([] if self.spans else [end_dofs.all("u^2")]))
         self.fixed = np.unique(fixed)
         self.free = np.setdiff1d(np.arange(self.basis.N), self.fixed)
         self.free_P = np.intersect1d(self.iP, self.free)
@@ -95,12 +102,18 @@ class FoilBearing1D:
 
     def residual(self, u, prm: FoilParameters) -> np.ndarray:
         """The coupled residual (:class:`webfem.fem.systems.LineSystem`)."""
-        return self.system.residual(u, prm)
+        return ends.with_springs(self.system.residual(u, prm), u, self.iW_ends,
+                                 self._springs(prm))
 
     def jacobian(self, u, prm: FoilParameters, newton: bool = True):
         """Exact Jacobian, or (``newton=False``) the Picard operator with frozen film
         coefficients."""
-        return self.system.jacobian(u, prm, bool(newton))
+        return ends.jacobian_with_springs(self.system.jacobian(u, prm, bool(newton)),
+                                          self.iW_ends, self._springs(prm))
+
+    def _springs(self, prm: FoilParameters) -> tuple[float, float]:
+        # held at the domain's ends, the end deflections are fixed at 0: no spring
+        return ends.end_springs(self.X, prm) if self.spans else (0.0, 0.0)
 
     def initial_guess(self, prm: FoilParameters, H0: float = 0.643) -> np.ndarray:
         """A large-gap start: the Eshel-Elrod film H0 at the inlet edge, falling along the wrap
