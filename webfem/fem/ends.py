@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["end_springs", "shortest_span", "with_springs", "jacobian_with_springs"]
+__all__ = ["end_springs", "springs", "shortest_span", "with_springs", "jacobian_with_springs"]
 
 
 def shortest_span(X, beta: float) -> float:
@@ -50,6 +50,12 @@ def end_springs(X, prm) -> tuple[float, float]:
         raise ValueError(f"span = {prm.span:g} does not reach past the domain's ends "
                          f"(zones {-float(X[0]) - e:g} and {float(X[-1]) - e:g})")
     return 1.0 / rest[0], 1.0 / rest[1]
+
+
+def springs(problem, prm) -> tuple[float, float]:
+    """The springs of ``problem`` (a 1-D or 2-D problem with ``X`` and ``spans``): none
+    where it holds the web at the domain's ends (its end deflections are fixed at 0)."""
+    return end_springs(problem.X, prm) if problem.spans else (0.0, 0.0)
 
 
 def with_springs(r: np.ndarray, u, ends, springs) -> np.ndarray:

@@ -136,7 +136,7 @@ class FoilBearing2D:
             else np.ones_like(zq)
         # held at the domain's ends (Eq. 20), or through the spans beyond them (wrap.span:
         # the end deflections are unknowns on springs, :mod:`webfem.fem.ends`)
-        fixed_w = (np.array([], dtype=np.int64) if self.config.spans
+        fixed_w = (np.array([], dtype=np.int64) if self.spans
                    else self.wbasis.get_dofs({"left", "right"}).all("u") + self.nP)
         if self.ambient_grooves:
             zd = self.fbasis.doflocs[1]
@@ -219,16 +219,17 @@ class FoilBearing2D:
     def residual(self, u, prm) -> np.ndarray:
         """The coupled residual."""
         return ends.with_springs(self.system.residual(u, prm), u, self.iW_ends,
-                                 self._springs(prm))
+                                 ends.springs(self, prm))
 
     def jacobian(self, u, prm, newton: bool = True):
         """Exact Jacobian, or (``newton=False``) Picard's."""
         return ends.jacobian_with_springs(self.system.jacobian(u, prm, bool(newton)),
-                                          self.iW_ends, self._springs(prm))
+                                          self.iW_ends, ends.springs(self, prm))
 
-    def _springs(self, prm) -> tuple[float, float]:
-        # held at the domain's ends, the end deflections are fixed at 0: no spring
-        return ends.end_springs(self.X, prm) if self.config.spans else (0.0, 0.0)
+    @property
+    def spans(self) -> bool:
+        """The web held through spans beyond the domain (``wrap.span``), not at its ends."""
+        return self.config.spans
 
     # -- fields -------------------------------------------------------------------------------
     def at(self, X, dofs) -> np.ndarray:

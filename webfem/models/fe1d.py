@@ -48,7 +48,7 @@ from .options import FE1DOptions
 from .outcome import Facts
 
 __all__ = ["FoilParameters", "FoilBearing1D", "ProblemCache", "LINE", "solve", "solve_case",
-           "NAME"]
+           "NAME", "spans", "check_span", "held_ends_warning", "HELD_ENDS_SHARE"]
 
 NAME = "fe1d"
 #: The defaults of :class:`~webfem.models.options.FE1DOptions`, by name (read-only view).
@@ -132,7 +132,7 @@ class _Line(Discretisation):
             nodes = read_x_nodes(options.mesh) / case.x_scale
         X = _nodes(prm.beta, options.entry, options.level, nodes)
         check_span(case, X)
-        return self.problems(X, options.order, prm.span > 0.0)
+        return self.problems(X, options.order, spans(case))
 
     def start(self, case: Case, prm: FoilParameters, options: FE1DOptions,
               restart: State | None) -> Start:
@@ -205,11 +205,17 @@ class _Line(Discretisation):
 HELD_ENDS_SHARE = 0.05
 
 
+def spans(case: Case) -> bool:
+    """Whether the web is held through spans beyond the domain (``wrap.span``) rather than
+    at its ends (:mod:`webfem.fem.ends`)."""
+    return case.wrap.span is not None
+
+
 def check_span(case: Case, X) -> None:
     """Refuse a ``wrap.span`` that does not reach past the domain's entry and exit zones
     on the (scaled) nodes ``X`` (the FE models hold the web through the straight span
     beyond them: :mod:`webfem.fem.ends`), naming the least span that does."""
-    if case.wrap.span is not None:
+    if spans(case):
         least = ends.shortest_span(X, case.beta)
         if case.wrap.span / case.x_scale <= least:
             raise InputError(

@@ -83,7 +83,7 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                                 options.level)
         return FoilBearing2D(X, Z, order=options.order, grooves=pattern, strip=True,
                              ambient_grooves=options.groove_pressure == "ambient",
-                             spans=_spans(case))
+                             spans=fe1d.spans(case))
     else:
         Z = graded_groove_nodes(pattern, 0.0, case.lam, [case.lam], options.width_fine,
                                 options.level)
@@ -92,13 +92,8 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
     return FoilBearing2D(X, Z, order=options.order, grooves=pattern,
                          web_edges=domain != "cell",
                          ambient_grooves=options.groove_pressure == "ambient",
-                         spans=_spans(case))
+                         spans=fe1d.spans(case))
 
-
-def _spans(case: Case) -> bool:
-    """Whether the web is held through spans beyond the domain (``wrap.span``) rather than
-    at its ends (:mod:`webfem.fem.ends`)."""
-    return case.wrap.span is not None
 
 
 def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
@@ -331,7 +326,7 @@ class _Film(Discretisation):
         Xc, Zc = coarser_nodes(p1.X, (-e, e)), coarser_nodes(Z)
         if Xc is None or Zc is None:
             return None
-        coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=_spans(case))
+        coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=fe1d.spans(case))
         coarse.line_start, coarse.direct = (p1, u1), True
         settled = _coarse_rounds(case, prm, options, coarse,
                                  coarse.start_from_line(p1, u1, prm), "a coarse mesh first")
@@ -362,7 +357,7 @@ class _Film(Discretisation):
         if not np.allclose(X[[0, -1]], graded[[0, -1]], rtol=1e-9, atol=1e-9):
             return None
         X[[0, -1]] = graded[[0, -1]]
-        on_moved = FoilBearing2D(X, Z, order=options.order, spans=_spans(case))
+        on_moved = FoilBearing2D(X, Z, order=options.order, spans=fe1d.spans(case))
         if on_moved.n_dofs != restart.u.size:
             return None
         u0, note = continued.predicted(on_moved, case, restart)
@@ -381,7 +376,7 @@ class _Film(Discretisation):
             if restart.prior is not None and restart.prior[1].shape == restart.u.shape:
                 kept["continued_from2"] = restart.prior
         else:
-            problem = FoilBearing2D(planned, Zc, order=options.order, spans=_spans(case))
+            problem = FoilBearing2D(planned, Zc, order=options.order, spans=fe1d.spans(case))
             u0 = on_moved.transfer(u0, prm, problem)
             kept["continued"] = note + ", carried over to the mesh its gap asks for"
             # the previous state carried over too: the next point's secant (from the

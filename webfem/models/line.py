@@ -103,17 +103,13 @@ class FoilBearing1D:
     def residual(self, u, prm: FoilParameters) -> np.ndarray:
         """The coupled residual (:class:`webfem.fem.systems.LineSystem`)."""
         return ends.with_springs(self.system.residual(u, prm), u, self.iW_ends,
-                                 self._springs(prm))
+                                 ends.springs(self, prm))
 
     def jacobian(self, u, prm: FoilParameters, newton: bool = True):
         """Exact Jacobian, or (``newton=False``) the Picard operator with frozen film
         coefficients."""
         return ends.jacobian_with_springs(self.system.jacobian(u, prm, bool(newton)),
-                                          self.iW_ends, self._springs(prm))
-
-    def _springs(self, prm: FoilParameters) -> tuple[float, float]:
-        # held at the domain's ends, the end deflections are fixed at 0: no spring
-        return ends.end_springs(self.X, prm) if self.spans else (0.0, 0.0)
+                                          self.iW_ends, ends.springs(self, prm))
 
     def initial_guess(self, prm: FoilParameters, H0: float = 0.643) -> np.ndarray:
         """A large-gap start: the Eshel-Elrod film H0 at the inlet edge, falling along the wrap
