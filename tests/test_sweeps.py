@@ -104,6 +104,29 @@ def test_closed_form_sweep_resumes_nothing_to_do(tmp_path):
     assert calls == [] and again == rows
 
 
+def test_a_sweep_stored_before_a_new_case_key_resumes(tmp_path):
+    """A case key added later with nothing set (wrap.span, left out: None) is not a
+    difference: the sweep stored without it resumes (make run refused its own out/ after
+    the key was added: "holds another sweep (series 'base' with other case values)")."""
+    import json
+
+    spec = small(values=(10.0, 20.0, 30.0))
+    rows = run(spec, "closed-form", tmp_path / "c.csv")
+    sidecar = tmp_path / "c.sweep.json"
+    sig = json.loads(sidecar.read_text())
+    for _, case in sig["series"]:
+        assert case["wrap"].pop("span") is None
+    sidecar.write_text(json.dumps(sig))
+    calls, progress = counter()
+    again = run(spec, "closed-form", tmp_path / "c.csv", progress=progress)
+    assert calls == [] and again == rows
+    for _, case in sig["series"]:            # a value set where it was not: another sweep
+        case["wrap"]["span"] = 1.0
+    sidecar.write_text(json.dumps(sig))
+    with pytest.raises(InputError, match="other case values"):
+        run(spec, "closed-form", tmp_path / "c.csv")
+
+
 def test_bad_arguments_refused_before_anything_runs(tmp_path):
     out = tmp_path / "x" / "s.csv"
     for kw, match in (({"dask": "foo"}, "dask = 'foo' is not valid"),

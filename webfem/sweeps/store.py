@@ -95,9 +95,19 @@ def _differences(old: dict, new: dict) -> list[str]:
     for label, case in old.get("series", []):
         if label not in cases:
             why.append(f"series {label!r}, which this sweep does not have")
-        elif cases[label] != case:
+        elif not _same_case(case, cases[label]):
             why.append(f"series {label!r} with other case values")
     return why
+
+
+def _same_case(old, new) -> bool:
+    """Whether the case values ``old`` (a stored signature's) are ``new``'s, where a key
+    ``old`` lacks counts as the same while ``new`` leaves it out (None): a case key added
+    later (``wrap.span``) keeps the sweeps stored before it resumable."""
+    if isinstance(old, dict) and isinstance(new, dict):
+        return all(k in new for k in old) and all(
+            _same_case(old[k], new[k]) if k in old else new[k] is None for k in new)
+    return old == new
 
 
 class Store:
@@ -172,7 +182,7 @@ class Store:
         converged = {i: r for i, r in _by_point(table.rows, keys, self.row_key).items()
                      if r["converged"] == "True"}
         if not why:
-            if old == new:
+            if old == new or _old_points(old) == set(keys):
                 if converged and notice:
                     rest = len(keys) - len(converged)
                     notice(f"{self.csv_path}: resuming this sweep: {len(converged)} of "
