@@ -41,7 +41,7 @@ class FoilParameters:
     a resting web (:meth:`film_strength`); span: the free span from each wrap edge to the
     neighbouring roller, in X (0: the web held at the ends of the domain, Eq. 20; else the
     problems hold it there through a straight span from the domain's ends,
-    :func:`span_stiffness`).
+    :func:`webfem.fem.ends.end_springs`).
     """
 
     beta: float
