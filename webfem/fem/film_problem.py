@@ -54,7 +54,8 @@ class FilmConfig:
     """What a 2-D problem is made of besides its nodes: the pressure element ``order`` (1 or
     2), the roller's ``grooves`` (None: smooth), whether Z ends at the ``web_edges`` (False:
     the periodic cell of a grooved roller), ``ambient_grooves`` (P = 0 in the grooves: the
-    deep-groove limit, for checks) and ``strip``.
+    deep-groove limit, for checks), ``strip`` and ``spans`` (the web held through the spans
+    beyond the domain, ``wrap.span``: :mod:`webfem.fem.ends`).
 
     ``strip``: Z[0] > 0 is a land centre inside the web (a symmetry line) and Z[-1] the web's
     edge; the film on [Z[0], Z[-1]] stands for the half width [0, Z[-1]]: the interior
