@@ -1,6 +1,7 @@
-"""The web held at the neighbouring rollers (``wrap.span``) instead of at the ends of the FE
-models' entry and exit zones (the paper's Eq. 20): webfem.fem.ends and docs/model.md,
-"Where the web is held"."""
+"""The web held at the neighbouring rollers (``wrap.ends = "span"``, the default, ``wrap.span``
+from each wrap edge) instead of at the ends of the FE models' entry and exit zones
+(``wrap.ends = "held"``, the paper's Eq. 20): webfem.fem.ends and docs/model.md, "Where the web
+is held"."""
 
 import pytest
 
@@ -12,8 +13,17 @@ BASE = webfem.load_case(webfem.bundled.find_case("base"))
 
 
 def solve(model, span, **options):
-    case = BASE if span is None else BASE.updated({"wrap.span": span})
+    """``span`` None: held at the zones' ends."""
+    case = BASE.updated({"wrap.ends": "held"} if span is None else {"wrap.span": span})
     return webfem.solve(case, model=model, **options)
+
+
+def test_the_default_holds_the_web_at_1_m_spans_and_the_papers_physics_at_the_zones():
+    case = Case()
+    assert (case.wrap.ends, case.wrap.span, case.span_used) == ("span", 1.0, 1.0)
+    assert Case().updated({"model.physics": "paper"}).span_used is None
+    assert Case().updated({"wrap.ends": "held"}).span_used is None
+    assert webfem.solve(BASE, model="fe1d")["h_center"] == solve("fe1d", 1.0)["h_center"]
 
 
 def test_with_a_span_the_answer_no_longer_depends_on_the_zones():
@@ -43,16 +53,21 @@ def test_picard_holds_the_web_through_its_spans_as_newton_does():
     assert picard["h_center"] == pytest.approx(newton["h_center"], rel=1e-6)
 
 
-def test_a_span_inside_the_zones_is_refused_by_name():
-    with pytest.raises(InputError, match=r"wrap\.span = 0\.05 m is out of range.*> 0\.06"):
-        solve("fe1d", 0.05)
+def test_a_span_inside_the_zones_holds_the_web_at_their_ends_and_says_so():
+    short, held = solve("fe1d", 0.05), solve("fe1d", None)
+    assert short["h_center"] == held["h_center"]
+    assert any("wrap.span = 0.05 m does not reach past the entry and exit zones (0.06" in w
+               for w in short["warnings"])
+    assert not any("does not reach past" in w for w in held["warnings"])
     with pytest.raises(InputError, match=r"wrap\.span"):
         Case().updated({"wrap.span": -1.0})
+    with pytest.raises(InputError, match=r"wrap\.ends"):
+        Case().updated({"wrap.ends": "free"})
 
 
 def test_a_stiff_web_held_at_its_span_does_not_warn():
     board = webfem.load_case(webfem.bundled.find_case("board"))
-    warned = webfem.solve(board, model="fe1d")["warnings"]
+    warned = webfem.solve(board.updated({"wrap.ends": "held"}), model="fe1d")["warnings"]
     assert any("bending length" in w for w in warned)
     spanned = webfem.solve(board.updated({"wrap.span": 1.0}), model="fe1d")
     assert spanned["converged"]

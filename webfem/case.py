@@ -175,6 +175,15 @@ class Case:
         return self.model.physics == "paper"
 
     @property
+    def span_used(self) -> float | None:
+        """The span [m] through which the models hold the web beyond their entry and exit
+        zones (``wrap.span``), or None where they hold it at the zones' ends (the paper's
+        Eq. 20): ``wrap.ends = "held"``, a span left out, or the paper's physics."""
+        if self.paper_physics or self.wrap.ends == "held":
+            return None
+        return self.wrap.span
+
+    @property
     def web_inertia(self) -> float:
         """Tension the moving web spends turning around the roller, rho_w t U_w^2 [N/m]
         (0 with the paper's physics)."""

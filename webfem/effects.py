@@ -9,9 +9,9 @@ Examples
 >>> from webfem import Case
 >>> table = effects_table(Case().updated({"roller.speed": 40.0}), "closed-form")
 >>> [row.effect for row in table.rows]
-['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow']
+['all included', 'bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow', 'spans']
 >>> table.not_carried                  # the closed form cannot carry these
-('bending', 'slip', 'isothermal-permeation')
+('bending', 'slip', 'isothermal-permeation', 'spans')
 
 With ``model="auto"`` the full case is solved with auto, and every variant with the model
 auto chose for it (and that model's options): a variant answered by another model would

@@ -251,20 +251,26 @@ class Web(Section):
 
 @dataclass(frozen=True)
 class Wrap(Section):
-    """Wrap ``angle_deg`` B in degrees, 0.1 <= B < 360, and the free ``span`` [m] from each
-    wrap edge to the neighbouring roller (left out: the web is held at the ends of the FE
-    models' entry and exit zones, the paper's Eq. 20)."""
+    """Wrap ``angle_deg`` B in degrees, 0.1 <= B < 360, and where the web is held beyond
+    it: ``ends`` "span" (default: at the neighbouring rollers, a free ``span`` [m] from each
+    wrap edge) or "held" (at the ends of the FE models' entry and exit zones, the paper's
+    Eq. 20)."""
 
     _name = "wrap"
     angle_deg: float = field(default=60.0, metadata=_num("deg", 0.0, 360.0,
                                                           doc="wrap angle B",
                                                           real=(0.1, None)))
-    span: float | None = field(default=None, metadata=_num(
+    span: float | None = field(default=1.0, metadata=_num(
         "m", 0.0, doc="free span from each wrap edge to the neighbouring roller, where the "
         "web is held on its nominal line (the FE models: a straight, unloaded web from the "
-        "end of their entry or exit zone to there)",
-        absent="the web held at the ends of the entry and exit zones (the paper's Eq. 20)",
+        "end of their entry or exit zone to there); used with ends = \"span\"",
+        absent="the web held at the ends of the entry and exit zones (as ends = \"held\")",
         real=(1e-3, 100.0)))
+    ends: str = field(default="span", metadata=_choice(
+        "span", "held", doc="where the web is held: at the neighbouring rollers, span "
+        "beyond each wrap edge (span), or at the ends of the entry and exit zones, "
+        "w = 0 there (held: the paper's Eq. 20, an artefact of the domain's length for "
+        "stiff webs)"))
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,11 @@ def add_parser(subparsers) -> None:
                    help="seconds one fe2d solve may take before it is recorded as failed")
     p.add_argument("--fit-only", action="store_true",
                    help="fit the rows the store holds, solve nothing")
+    p.add_argument("--recheck", action="store_true",
+                   help="solve the hold-out points among the first --points again with the "
+                        "current physics into STORE/holdout.csv (resumable); whenever that "
+                        "table exists its rows state the errors (for a fit trained on an "
+                        "earlier physics: the shipped one)")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     add_quiet_argument(p)
 
@@ -52,15 +57,21 @@ def run(args) -> int:
                          progress=Progress(args.quiet, "design points"))
     elif not csv.is_file():
         raise InputError(f"--fit-only: no campaign table {csv}: run without --fit-only first")
+    recheck = folder / "holdout.csv"
+    if args.recheck:
+        fit_campaign.recheck(recheck, args.points, timeout=args.timeout,
+                             progress=Progress(args.quiet, "hold-out points"))
     solved = time.perf_counter() - t0
-    report = fit_build.build(csv, out)
+    report = fit_build.build(csv, out, holdout_csv=recheck if recheck.is_file() else None)
     report.update(campaign_seconds=solved, total_seconds=time.perf_counter() - t0,
                   coefficients=str(out))
     if args.json:
         print_json(report, units=False)
         return 0
     print(f"{report['train']} training and {report['holdout']} hold-out fe2d solutions "
-          f"({report['failed']} failed) in {solved:.0f} s; coefficients: {out}")
+          f"({report['failed']} failed) in {solved:.0f} s; coefficients: {out}"
+          + ("; the hold-out points solved again with the current physics (holdout.csv) "
+             "state the errors" if report["holdout_rechecked"] else ""))
     print("hold-out error percentiles 50/90/95/max:")
     for q, v in report["percentiles_50_90_95_max"].items():
         print(f"  {q:<14} " + " ".join(f"{x:.3g}" for x in v))

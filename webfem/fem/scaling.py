@@ -90,7 +90,7 @@ class FoilParameters:
             floor=floor * case.sigma / case.h_scale,
             law=1 if gaussian else 0, H_c=float(h_c / case.h_scale),
             land=case.land_fraction, flow=1 if case.roughness_flow_model == "mean-gap" else 0,
-            span=0.0 if case.wrap.span is None else case.wrap.span / case.x_scale,
+            span=0.0 if case.span_used is None else case.span_used / case.x_scale,
         )
 
     def as_form_args(self) -> dict:

@@ -48,7 +48,7 @@ from .options import FE1DOptions
 from .outcome import Facts
 
 __all__ = ["FoilParameters", "FoilBearing1D", "ProblemCache", "LINE", "solve", "solve_case",
-           "NAME", "spans", "check_span", "held_ends_warning", "HELD_ENDS_SHARE"]
+           "NAME", "spans", "short_span_warning", "held_ends_warning", "HELD_ENDS_SHARE"]
 
 NAME = "fe1d"
 #: The defaults of :class:`~webfem.models.options.FE1DOptions`, by name (read-only view).
@@ -131,8 +131,7 @@ class _Line(Discretisation):
         if options.mesh is not None:
             nodes = read_x_nodes(options.mesh) / case.x_scale
         X = _nodes(prm.beta, options.entry, options.level, nodes)
-        check_span(case, X)
-        return self.problems(X, options.order, spans(case))
+        return self.problems(X, options.order, spans(case, X))
 
     def start(self, case: Case, prm: FoilParameters, options: FE1DOptions,
               restart: State | None) -> Start:
@@ -192,7 +191,8 @@ class _Line(Discretisation):
     def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
         warnings = ((f"lambda = {case.lam:.3g}: a narrow web leaks air at its edges, which "
                      "the 1-D (infinitely wide) model ignores; its gap is too large",)
-                    if case.lam < 7.0 else ()) + held_ends_warning(case, prm, problem.X)
+                    if case.lam < 7.0 else ()) + held_ends_warning(case, prm, problem.X) \
+            + short_span_warning(case, problem.X)
         return Facts(n_cells=len(problem.X) - 1, warnings=warnings)
 
 
@@ -205,23 +205,26 @@ class _Line(Discretisation):
 HELD_ENDS_SHARE = 0.05
 
 
-def spans(case: Case) -> bool:
-    """Whether the web is held through spans beyond the domain (``wrap.span``) rather than
-    at its ends (:mod:`webfem.fem.ends`)."""
-    return case.wrap.span is not None
+def spans(case: Case, X) -> bool:
+    """Whether the web is held through spans beyond the domain on the (scaled) nodes ``X``
+    (:mod:`webfem.fem.ends`) rather than at its ends: where the case asks for it
+    (``wrap.ends = "span"``, :attr:`Case.span_used`) and its span reaches past the entry
+    and exit zones (else :func:`short_span_warning` says it is held at the zones' ends)."""
+    span = case.span_used
+    return span is not None and span / case.x_scale > ends.shortest_span(X, case.beta)
 
 
-def check_span(case: Case, X) -> None:
-    """Refuse a ``wrap.span`` that does not reach past the domain's entry and exit zones
-    on the (scaled) nodes ``X`` (the FE models hold the web through the straight span
-    beyond them: :mod:`webfem.fem.ends`), naming the least span that does."""
-    if spans(case):
-        least = ends.shortest_span(X, case.beta)
-        if case.wrap.span / case.x_scale <= least:
-            raise InputError(
-                f"wrap.span = {case.wrap.span:g} m is out of range for this model: must be "
-                f"> {least * case.x_scale:.4g} m, the entry and exit zones it holds the web "
-                f"beyond ({least:.4g} R eps^(1/3)); a shorter option entry shortens them")
+def short_span_warning(case: Case, X) -> tuple[str, ...]:
+    """The warning that ``wrap.span`` does not reach past the entry and exit zones on the
+    nodes ``X``, so that the web is held at the zones' ends instead (Eq. 20)."""
+    span = case.span_used
+    if span is None or spans(case, X):
+        return ()
+    least = ends.shortest_span(X, case.beta)
+    return (f"wrap.span = {span:g} m does not reach past the entry and exit zones "
+            f"({least * case.x_scale:.4g} m, {least:.4g} R eps^(1/3)): the web is held at the "
+            "zones' ends instead (w = 0, the paper's Eq. 20); a shorter option entry shortens "
+            "the zones",)
 
 
 def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
@@ -232,7 +235,7 @@ def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
     (an empty tuple) for flexible webs."""
     zone = min(-float(X[0]), float(X[-1])) - 0.5 * prm.beta
     bend = float(np.sqrt(max(prm.Dn, 0.0)))
-    if prm.span > 0.0 or zone <= 0.0 or bend <= HELD_ENDS_SHARE * zone:
+    if spans(case, X) or zone <= 0.0 or bend <= HELD_ENDS_SHARE * zone:
         return ()
     mm = 1e3 * case.x_scale
     return (f"bending: the web's bending length sqrt(D/T_eff) = {bend * mm:.3g} mm is "
@@ -240,8 +243,9 @@ def held_ends_warning(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
             "ends the web is held on its nominal line (w = 0, Eq. 20): where it is held "
             "moves the answer, and the stated errors do not include that. On the envelope "
             "benchmark's board points with Dn > 100 freeing the ends instead moved h_center, "
-            "h_min or mu by 7-106 % (docs/model.md, 'Where the web is held'); set wrap.span "
-            "(m, from the wrap edge to the neighbouring roller) to hold it there instead",)
+            "h_min or mu by 7-106 % (docs/model.md, 'Where the web is held'); wrap.ends = \"span\" "
+            "(the default) holds it at the neighbouring rollers instead, wrap.span (m) from "
+            "the wrap edges",)
 
 
 def line_mesh_text(X, options) -> str:

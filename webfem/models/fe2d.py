@@ -70,7 +70,6 @@ def _vent_of(pattern: GroovePattern, options: FE2DOptions) -> float:
 def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2D:
     """The 2-D problem of ``case`` on the X nodes ``X`` (scaled): the width's nodes, the
     grooves and the domain from the case and the options."""
-    fe1d.check_span(case, X)
     pattern, domain = groove_domain(case, options)
     if pattern is None:
         Z = problem_for_width(case, options)
@@ -83,7 +82,7 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                                 options.level)
         return FoilBearing2D(X, Z, order=options.order, grooves=pattern, strip=True,
                              ambient_grooves=options.groove_pressure == "ambient",
-                             spans=fe1d.spans(case))
+                             spans=fe1d.spans(case, X))
     else:
         Z = graded_groove_nodes(pattern, 0.0, case.lam, [case.lam], options.width_fine,
                                 options.level)
@@ -92,7 +91,7 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
     return FoilBearing2D(X, Z, order=options.order, grooves=pattern,
                          web_edges=domain != "cell",
                          ambient_grooves=options.groove_pressure == "ambient",
-                         spans=fe1d.spans(case))
+                         spans=fe1d.spans(case, X))
 
 
 
@@ -326,7 +325,7 @@ class _Film(Discretisation):
         Xc, Zc = coarser_nodes(p1.X, (-e, e)), coarser_nodes(Z)
         if Xc is None or Zc is None:
             return None
-        coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=fe1d.spans(case))
+        coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=fe1d.spans(case, Xc))
         coarse.line_start, coarse.direct = (p1, u1), True
         settled = _coarse_rounds(case, prm, options, coarse,
                                  coarse.start_from_line(p1, u1, prm), "a coarse mesh first")
@@ -357,7 +356,7 @@ class _Film(Discretisation):
         if not np.allclose(X[[0, -1]], graded[[0, -1]], rtol=1e-9, atol=1e-9):
             return None
         X[[0, -1]] = graded[[0, -1]]
-        on_moved = FoilBearing2D(X, Z, order=options.order, spans=fe1d.spans(case))
+        on_moved = FoilBearing2D(X, Z, order=options.order, spans=fe1d.spans(case, X))
         if on_moved.n_dofs != restart.u.size:
             return None
         u0, note = continued.predicted(on_moved, case, restart)
@@ -376,7 +375,8 @@ class _Film(Discretisation):
             if restart.prior is not None and restart.prior[1].shape == restart.u.shape:
                 kept["continued_from2"] = restart.prior
         else:
-            problem = FoilBearing2D(planned, Zc, order=options.order, spans=fe1d.spans(case))
+            problem = FoilBearing2D(planned, Zc, order=options.order,
+                                    spans=fe1d.spans(case, planned))
             u0 = on_moved.transfer(u0, prm, problem)
             kept["continued"] = note + ", carried over to the mesh its gap asks for"
             # the previous state carried over too: the next point's secant (from the
@@ -516,7 +516,8 @@ class _Film(Discretisation):
     def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
         warnings = ((f"beta = {case.beta:.3g} < 6: the wrap is shorter than the entry and "
                      "exit zones; no uniform central gap exists",) if case.beta < 6.0 else ()) \
-            + fe1d.held_ends_warning(case, prm, problem.X)
+            + fe1d.held_ends_warning(case, prm, problem.X) \
+            + fe1d.short_span_warning(case, problem.X)
         common = dict(n_cells=int(problem.mesh.nelements), width_cells=len(problem.Z) - 1,
                       land_fraction=case.land_fraction, warnings=warnings)
         if problem.grooves is None:

@@ -37,6 +37,7 @@ import math
 import numpy as np
 
 from ..case import Case
+from ..sections import Wrap
 from ..fem.scaling import FoilParameters
 from ..physics.friction import SLIP_COEFFICIENT
 
@@ -150,10 +151,13 @@ def physics_refusal(case: Case) -> str | None:
     if case.grooved:
         return ("grooved roller: the fit covers smooth rollers only (the periodic cell adds "
                 "pitch, land fraction and depth groups); use fe2d")
-    if case.wrap.span is not None:
-        return (f"wrap.span = {case.wrap.span:g} m: the fit was trained with the web held at "
-                "the ends of the entry and exit zones (wrap.span left out) only; use fe1d or "
-                "fe2d")
+    default = Wrap().span
+    if case.wrap.ends != "span" or case.wrap.span != default:
+        said = (f"wrap.ends = {case.wrap.ends!r}" if case.wrap.ends != "span"
+                else f"wrap.span = {case.wrap.span:g} m")
+        return (f"{said}: the fit's errors were measured with the web held through "
+                f"{default:g} m spans (wrap.ends = 'span', wrap.span = {default:g} m, the "
+                "defaults) only; use fe1d or fe2d")
     wanted = {key: (value, FIT_PHYSICS[key]) for key, value in (
         ("model.physics", case.model.physics), ("air.slip", case.air.slip),
         ("air.roughness_flow", case.air.roughness_flow), ("web.permeation", case.web.permeation),

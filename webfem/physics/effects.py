@@ -14,6 +14,9 @@ isothermal-permeation  k > 0, ``web.permeation =        ``web.permeation = "pape
 load-friction          ``friction.variant = "loads"``   ``friction.variant = "paper"``
 roughness-flow         ``air.roughness_flow =           ``air.roughness_flow = "none"``
                        "mean-gap"``
+spans                  ``wrap.ends = "span"``: the web  ``wrap.ends = "held"`` (at the
+                       held at the neighbouring         entry and exit zones' ends, Eq. 20)
+                       rollers, ``wrap.span`` away
 =====================  ===============================  ====================================
 
 ``model.physics = "paper"`` switches them all off at once (an explicit D stays).
@@ -22,7 +25,7 @@ Examples
 --------
 >>> from webfem import Case
 >>> included(Case())
-('bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow')
+('bending', 'slip', 'isothermal-permeation', 'load-friction', 'roughness-flow', 'spans')
 >>> included(Case().updated({"model.physics": "paper"}))
 ()
 """
@@ -40,12 +43,13 @@ __all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out
 
 #: Every effect, in the order tables list them.
 EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction",
-           "roughness-flow")
+           "roughness-flow", "spans")
 #: The case keys that switch each effect off.
 SWITCH_OFF = {"inertia": {"web.density": 0.0}, "bending": {"web.bending_stiffness": 0.0},
               "slip": {"air.slip": "none"}, "isothermal-permeation": {"web.permeation": "paper"},
               "load-friction": {"friction.variant": "paper"},
-              "roughness-flow": {"air.roughness_flow": "none"}}
+              "roughness-flow": {"air.roughness_flow": "none"},
+              "spans": {"wrap.ends": "held"}}
 #: What the closed form carries: T_eff (inertia), the friction from the loads on its Eq. 21
 #: gap (contact and Couette shear with slip; no pressure-gradient shear) and, of the
 #: roughness flow, the shear of the air through the roughness (Eq. 21's gap has no flow term).
@@ -59,7 +63,8 @@ def included(case) -> tuple[str, ...]:
           "isothermal-permeation": (case.permeation_model == "isothermal"
                                     and case.web.permeability > 0.0),
           "load-friction": case.friction_variant == "loads",
-          "roughness-flow": case.roughness_flow_model == "mean-gap"}
+          "roughness-flow": case.roughness_flow_model == "mean-gap",
+          "spans": case.span_used is not None}
     return tuple(name for name in EFFECTS if on[name])
 
 

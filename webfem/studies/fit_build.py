@@ -214,10 +214,12 @@ def region_errors(errs: dict, n_regions: int = 3) -> np.ndarray:
     return table
 
 
-def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
+def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict:
     """Fit the converged training rows of ``campaign_csv``, state the errors from its
-    hold-out rows and write the coefficients to ``out_npz``; returns a report (sizes, the
-    hold-out error distribution per quantity, the stated table)."""
+    hold-out rows (or from the converged rows of ``holdout_csv``: the same points solved
+    again with the current physics, :func:`webfem.studies.fit_campaign.recheck`) and write
+    the coefficients to ``out_npz``; returns a report (sizes, the hold-out error
+    distribution per quantity, the stated table)."""
     import datetime
     from pathlib import Path
     from .. import __version__
@@ -227,6 +229,9 @@ def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
     rows = [r for r in typed(read_table(campaign_csv).rows) if r["converged"]]
     train = [r for r in rows if not r["holdout"]]
     hold = [r for r in rows if r["holdout"]]
+    rechecked = holdout_csv is not None
+    if rechecked:
+        hold = [r for r in typed(read_table(holdout_csv).rows) if r["converged"]]
     if len(train) < 4 or len(hold) < 1:
         raise InputError(f"{campaign_csv}: {len(train)} converged training and {len(hold)} "
                          "hold-out rows; the fit needs at least 4 and 1")
@@ -247,9 +252,16 @@ def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
         kernel = fit_kernel(x, y, restarts=restarts, trend=False, hyper_points=HYPER_POINTS)
         scalars = [fit_kernel(x, ys[:, list(cols)], restarts=restarts, trend=False,
                               hyper_points=HYPER_POINTS) for cols in SCALAR_KERNELS]
-    info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
-            f"physics, smooth roller), {len(hold)} held out; "
-            f"{datetime.date.today().isoformat()}")
+    if rechecked:
+        info = (f"trained on {len(train)} fe2d solutions with the web held at the entry and "
+                "exit zones' ends (wrap.ends = held; otherwise the default full physics, smooth "
+                f"roller); errors stated from {len(hold)} hold-out points solved again with "
+                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m); "
+                f"{datetime.date.today().isoformat()}")
+    else:
+        info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
+                f"physics, smooth roller), {len(hold)} held out; "
+                f"{datetime.date.today().isoformat()}")
     fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "scalars": scalars,
            "scalar_names": tuple(SCALARS[c] for cols in SCALAR_KERNELS for c in cols)}
     errs = holdout_errors(hold, fit)
@@ -269,5 +281,6 @@ def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
     pct = {q: np.percentile(errs[q], [50, 90, 95, 100]).tolist() for q in QUANTITIES}
     return {"train": len(train), "holdout": len(hold), "failed": sum(
         1 for r in typed(read_table(campaign_csv).rows) if not r["converged"]),
+        "holdout_rechecked": rechecked,
         "percentiles_50_90_95_max": pct, "stated": table.tolist(),
         "regions": np.bincount(errs["region"], minlength=3).tolist(), "info": info}
