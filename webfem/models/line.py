@@ -114,8 +114,10 @@ class FoilBearing1D:
     def initial_guess(self, prm: FoilParameters, H0: float = 0.643) -> np.ndarray:
         """A large-gap start: the Eshel-Elrod film H0 at the inlet edge, falling along the wrap
         with the permeation slope -K (where P = 1) down to the contact gap, and P = 1 in the
-        wrap; W tapers linearly to 0 at the ends. Without the slope, a permeable web's
-        consistent film pressure is about 0 and the first Newton step collapses the web."""
+        wrap; W tapers linearly from the wrap edges to 0 at the ends, or, held through spans
+        (:mod:`webfem.fem.ends`), to 0 at the neighbouring rollers: the straight spans the
+        springs hold. Without the slope, a permeable web's consistent film pressure is
+        about 0 and the first Newton step collapses the web."""
         u = np.zeros(self.basis.N)
         x = self.basis.doflocs[0]
         e = 0.5 * prm.beta
@@ -123,6 +125,8 @@ class FoilBearing1D:
         H_land = max(prm.H_c, 0.1) if prm.contact else 0.1
         xn = x[self.iW]
         X0, X1 = self.X[0], self.X[-1]
+        if self.spans and prm.span > 0.0:
+            X0, X1 = -e - prm.span, e + prm.span
 
         def wrap_gap(X):
             return np.maximum(H0 - prm.K * (np.clip(X, -e, e) + e), min(H_land, H0))
