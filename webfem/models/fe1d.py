@@ -144,7 +144,7 @@ class _Line(Discretisation):
         else the cold start."""
         if restart is None or restart.model != NAME:
             return problem.initial_guess(prm)
-        old = self.problems(restart.X, options.order)
+        old = self.problems(restart.X, options.order, problem.spans)
         if old.n_dofs != restart.u.size:
             return problem.initial_guess(prm)
         prev = FoilParameters.from_case(restart.case, options.compressible, options.contact,
@@ -158,7 +158,8 @@ class _Line(Discretisation):
         P = np.interp(Xmap, Xprev, old.pressure(restart.u, inner))
         u = problem.initial_guess(prm)
         W = H - forms.departure(X, prm.beta)
-        W[0] = W[-1] = 0.0
+        if not problem.spans:
+            W[0] = W[-1] = 0.0
         u[problem.iW] = W
         u[problem.iWx] = np.gradient(W, X)
         xP = problem.basis.doflocs[0][problem.iP]
