@@ -42,6 +42,9 @@ def test_the_quadrature_averages_exactly():
     ({"roller.groove_pitch": 2e-3, "roller.groove_width": 0.5e-3,
       "roller.groove_depth": 0.1e-3}, "grooved roller"),
     ({"model.physics": "paper"}, "model.physics = 'paper'"),
+    ({"wrap.ends": "held"}, "wrap.ends = 'held': the fit's errors were measured with the web "
+                            "held through 1 m spans"),
+    ({"wrap.span": 0.5}, "wrap.span = 0.5 m"),
 ])
 def test_outside_the_domain_it_refuses_naming_the_group(values, name):
     case = Case().updated(values)
