@@ -224,7 +224,10 @@ def build(campaign_csv, out_npz, *, restarts: int = 2) -> dict:
     from ..errors import InputError
     from ..models.fitted import QUANTITIES
     from ..sweeps.table import read_table, typed
-    rows = [r for r in typed(read_table(campaign_csv).rows) if r["converged"]]
+    # in design order: the fit (the draw of HYPER_POINTS, the kernels' centres) must not
+    # depend on the order rows finished in, which an interrupted parallel run leaves
+    rows = sorted((r for r in typed(read_table(campaign_csv).rows) if r["converged"]),
+                  key=lambda r: r["n"])
     train = [r for r in rows if not r["holdout"]]
     hold = [r for r in rows if r["holdout"]]
     if len(train) < 4 or len(hold) < 1:
