@@ -284,8 +284,9 @@ def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
     """Solve (or resume) the first ``n`` design points into ``out_csv``; returns the rows.
 
     Points that fail are kept (each is solved from cold: a re-run would repeat it) unless
-    ``retry_failed``: then they are solved again (after a physics change or with a longer
-    ``timeout``). ``options``: fe2d's (default :data:`FE2D_OPTIONS`). ``workers`` local
+    ``retry_failed``: then they are solved again (with a longer ``timeout``, or after a
+    change to the solver that keeps the campaign's signature: a new webfem version starts
+    the table afresh). ``options``: fe2d's (default :data:`FE2D_OPTIONS`). ``workers`` local
     processes, or a Dask cluster (``dask``: ``"local"`` with ``workers`` processes, or a
     scheduler's address), as :func:`webfem.sweeps.keyed.run_points` runs them: every point
     is a cold solve of its own case, so the rows are those of a serial run (the CSV in
