@@ -94,6 +94,103 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
     grown = json.loads(capsys.readouterr().out)
     assert grown["train"] + grown["holdout"] + grown["failed"] == 7
     assert (store / "campaign.csv").read_text().splitlines()[:7] == before
+    # the fit does not depend on the order of the rows (an interrupted parallel run leaves
+    # them in the order they finished): the rows reversed refit to the same arrays
+    lines = (store / "campaign.csv").read_text().splitlines(keepends=True)
+    (store / "campaign.csv").write_text("".join(lines[:1] + lines[:0:-1]))
+    again = store / "again.npz"
+    assert main(["fit", "build", "--store", str(store), "--fit-only", "--out", str(again),
+                 "--json", "--quiet"]) == 0
+    capsys.readouterr()
+    with np.load(store / "fitted_coefficients.npz") as a, np.load(again) as b:
+        assert set(a.files) == set(b.files)
+        for key in set(a.files) - {"info"}:          # info: the date
+            assert np.array_equal(a[key], b[key]), key
+
+
+def _without_seconds(rows):
+    return [{k: v for k, v in r.items() if k != "seconds"} for r in rows]
+
+
+def test_campaign_in_processes_and_on_dask_gives_the_serial_rows(tmp_path):
+    """--workers and --dask solve each design point as a serial campaign does (the same
+    rows, bit for bit, in design order), each point under its own time limit in its worker
+    (a Dask worker solves in a thread, which SIGALRM does not reach), failures kept unless
+    retried."""
+    serial = fc.run(tmp_path / "s" / "campaign.csv", 2, timeout=30.0)
+    assert all(r["converged"] for r in serial)
+    engines = [{"workers": 2}]
+    try:
+        import distributed  # noqa: F401
+        engines.append({"workers": 2, "dask": "local"})
+    except ImportError:
+        pass
+    for k, engine in enumerate(engines):
+        csv = tmp_path / f"p{k}" / "campaign.csv"
+        timed_out = fc.run(csv, 2, timeout=0.01, **engine)
+        assert [r["n"] for r in timed_out] == [0.0, 1.0]
+        assert all(not r["converged"] and r["message"] == "TimeoutError: no answer within "
+                   "0.01 s" for r in timed_out), (engine, timed_out)
+        assert fc.run(csv, 2, timeout=30.0, **engine) == timed_out   # failures kept
+        retried = fc.run(csv, 2, timeout=30.0, retry_failed=True, **engine)
+        assert _without_seconds(retried) == _without_seconds(serial), engine
+
+
+def _swallowing_spin(seconds):
+    """Under a limit of ``seconds``: spin, swallow the first TimeoutError as code catching
+    every error would, spin again; what the limit raised and said, and the time taken."""
+    import time
+
+    t0 = time.perf_counter()
+    try:
+        with fc.time_limit(seconds) as limit:
+            try:
+                while True:
+                    pass
+            except Exception:   # noqa: BLE001 - swallowed, as some library code does
+                pass
+            while True:
+                pass
+    except TimeoutError as err:
+        return limit.expired, str(err), time.perf_counter() - t0
+
+
+@pytest.mark.parametrize("in_thread", [False, True])
+def test_time_limit_strikes_again_and_leaves_the_thread_clean(in_thread):
+    """The campaign's per-point limit in the main thread (SIGALRM: serial and local
+    workers) and in another (a Dask worker's): raised again after a swallowed one, and
+    nothing raised after a block that ended in time."""
+    import threading
+    import time
+
+    out = []
+
+    def spin():
+        out.append(_swallowing_spin(0.1))
+        with fc.time_limit(0.1):       # ends in time: nothing raised later
+            pass
+        time.sleep(0.3)
+        out.append("clean")
+
+    if in_thread:
+        thread = threading.Thread(target=spin)
+        thread.start()
+        thread.join(10)
+    else:
+        spin()
+    (expired, message, seconds), clean = out
+    assert expired and message == "no answer within 0.1 s" and clean == "clean"
+    assert fc._AGAIN_S + 0.1 <= seconds < fc._AGAIN_S + 2.0
+
+
+def test_campaign_options_refused_before_anything_runs(tmp_path, capsys):
+    store = tmp_path / "c"
+    assert main(["fit", "build", "--points", "3", "--store", str(store), "--dask", "foo",
+                 "--quiet"]) == 2
+    assert "dask = 'foo' is not valid" in capsys.readouterr().err
+    assert not (store / "campaign.csv").exists()
+    assert main(["fit", "build", "--store", str(store), "--fit-only", "--workers", "2"]) == 2
+    assert "--fit-only solves nothing" in capsys.readouterr().err
 
 
 def test_drift_the_current_fe2d_reproduces_the_hold_out_answers():

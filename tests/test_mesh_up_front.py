@@ -74,3 +74,35 @@ def test_an_inadmissible_coarse_solve_leaves_the_start_on_the_1d_mesh(monkeypatc
     for q in READ_QUANTITIES:
         bound = sum(r[f"error_{q}"] * error_scale(BASE, q, r[q]) for r in (old, up_front))
         assert abs(old[q] - up_front[q]) <= bound + 1e-12 * error_scale(BASE, q, old[q]), q
+
+
+def test_the_fine_start_meets_the_thin_film_rule_before_the_fine_solve():
+    """Where the thin-film rule asks the fine start of a two-grid start for finer cells
+    (:func:`webfem.models.fe2d._fine_start`), the coarse cells under them are bisected and
+    solved again before the fine solve: the fine start it returns meets the rule, its fine
+    mesh is its coarse mesh bisected (the estimate's coarser mesh, whose solve it keeps),
+    and the coarse steps are counted. Here the coarse mesh is the 8.71 m/s answer's mesh
+    coarsened twice along x, once more than the rule allows its fine mesh."""
+    from webfem.fem.outcome import SolveInfo
+    from webfem.models.mesh_error import bisected_nodes
+    from webfem.models.refine import adapted_nodes
+
+    case = BASE.updated({"roller.speed": 8.71})
+    prm, o = _prm(case), OPTIONS
+    r = webfem.solve(case, "fe2d")
+    p, u = r.state("problem"), r.state("state")
+    e = 0.5 * prm.beta
+    coarse = p.variant(X=coarser_nodes(coarser_nodes(p.X, (-e, e)), (-e, e)),
+                       Z=coarser_nodes(p.Z))
+    uc, info = coarse.plain_newton(p.transfer(u, prm, coarse), prm, o.tol, o.max_iter)
+    assert info.converged
+    fine = coarse.variant(X=bisected_nodes(coarse.X), Z=p.Z)
+    assert adapted_nodes(fine, coarse.transfer(uc, prm, fine), prm, o.adapt_ratio,
+                         o.min_cell) is not None
+    fine2, u1, after, (coarse2, uc2) = fe2d._fine_start(
+        case, prm, o, coarse, uc, SolveInfo(converged=True), fine, np.zeros(fine.n_dofs))
+    assert fine2.X.size > fine.X.size and np.array_equal(fine2.Z, p.Z)
+    assert adapted_nodes(fine2, u1, prm, o.adapt_ratio, o.min_cell) is None
+    assert np.array_equal(coarser_nodes(fine2.X, (-e, e)), coarse2.X)
+    assert after.converged and after.iterations > 0
+    assert np.linalg.norm(coarse2.residual(uc2, prm)[coarse2.free]) <= o.tol

@@ -8,7 +8,8 @@ import time
 from pathlib import Path
 
 from ..errors import InputError
-from .common import HELP_FORMATTER, Progress, add_quiet_argument, output_folder, print_json
+from .common import (HELP_FORMATTER, Progress, add_quiet_argument, output_folder, positive_int,
+                     print_json)
 
 
 def add_parser(subparsers) -> None:
@@ -22,7 +23,9 @@ def add_parser(subparsers) -> None:
             "it finishes: a run interrupted continues where it stopped when run again, and "
             "a run with more --points extends the same table), fit "
             "the training points (every fifth point is held out and states the errors) and "
-            "write the coefficients to --out. --fit-only fits what the store holds.", 88))
+            "write the coefficients to --out. --fit-only fits what the store holds. The points "
+            "are solved in --workers local processes or on a Dask cluster (--dask), each "
+            "with its own --timeout; the rows are a serial run's.", 88))
     p.add_argument("action", choices=("build",), help="what to do (build)")
     p.add_argument("--points", type=int, default=64,
                    help="design points to solve (default 64; the shipped fit: README)")
@@ -34,11 +37,22 @@ def add_parser(subparsers) -> None:
                    help="seconds one fe2d solve may take before it is recorded as failed")
     p.add_argument("--fit-only", action="store_true",
                    help="fit the rows the store holds, solve nothing")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="solve the points recorded as failed again (default: kept as they "
+                        "are; e.g. with a longer --timeout, or after a solver change that keeps the "
+                        "campaign's signature)")
+    p.add_argument("--workers", type=positive_int, default=1,
+                   help="local worker processes (default 1: serial; > 1: the design points "
+                        "in parallel, each a cold solve as in a serial run)")
+    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
+                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
+                        "workers), an address joins an existing scheduler")
     p.add_argument("--recheck", action="store_true",
                    help="solve the hold-out points among the first --points again with the "
                         "current physics into STORE/holdout.csv (resumable); whenever that "
                         "table exists its rows state the errors (for a fit trained on an "
-                        "earlier physics: the shipped one)")
+                        "earlier physics: the shipped one); with --fit-only it solves "
+                        "these alone")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     add_quiet_argument(p)
 
@@ -52,15 +66,23 @@ def run(args) -> int:
     csv = folder / "campaign.csv"
     out = Path(args.out) if args.out else folder / "fitted_coefficients.npz"
     t0 = time.perf_counter()
+    if args.fit_only and args.retry_failed:
+        raise InputError("--fit-only solves nothing: --retry-failed is for the campaign")
+    if args.fit_only and not args.recheck and (args.workers > 1 or args.dask):
+        raise InputError("--fit-only solves nothing: --workers and --dask are for the "
+                         "campaign (or --recheck)")
     if not args.fit_only:
         fit_campaign.run(csv, args.points, timeout=args.timeout,
-                         progress=Progress(args.quiet, "design points"))
+                         progress=Progress(args.quiet, "design points"),
+                         workers=args.workers, dask=args.dask,
+                         retry_failed=args.retry_failed)
     elif not csv.is_file():
         raise InputError(f"--fit-only: no campaign table {csv}: run without --fit-only first")
     recheck = folder / "holdout.csv"
     if args.recheck:
         fit_campaign.recheck(recheck, args.points, timeout=args.timeout,
-                             progress=Progress(args.quiet, "hold-out points"))
+                             progress=Progress(args.quiet, "hold-out points"),
+                             workers=args.workers, dask=args.dask)
     solved = time.perf_counter() - t0
     report = fit_build.build(csv, out, holdout_csv=recheck if recheck.is_file() else None)
     report.update(campaign_seconds=solved, total_seconds=time.perf_counter() - t0,

@@ -226,12 +226,16 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     from ..errors import InputError
     from ..models.fitted import QUANTITIES
     from ..sweeps.table import read_table, typed
-    rows = [r for r in typed(read_table(campaign_csv).rows) if r["converged"]]
+    # in design order: the fit (the draw of HYPER_POINTS, the kernels' centres) must not
+    # depend on the order rows finished in, which an interrupted parallel run leaves
+    rows = sorted((r for r in typed(read_table(campaign_csv).rows) if r["converged"]),
+                  key=lambda r: r["n"])
     train = [r for r in rows if not r["holdout"]]
     hold = [r for r in rows if r["holdout"]]
     rechecked = holdout_csv is not None
     if rechecked:
-        hold = [r for r in typed(read_table(holdout_csv).rows) if r["converged"]]
+        hold = sorted((r for r in typed(read_table(holdout_csv).rows) if r["converged"]),
+                      key=lambda r: r["n"])
     if len(train) < 4 or len(hold) < 1:
         raise InputError(f"{campaign_csv}: {len(train)} converged training and {len(hold)} "
                          "hold-out rows; the fit needs at least 4 and 1")

@@ -8,7 +8,9 @@ case with those groups (:func:`case_of_groups`: a held web, newsprint's friction
 every other number chosen to realise the groups within the keys' valid ranges) and is
 solved by fe2d with its default mesh error target (1e-3, well below the fit's). The rows go
 to a resumable CSV (:func:`webfem.sweeps.keyed.run_points`): re-running the same command
-continues where it stopped.
+continues where it stopped. The points may be solved in local processes or on a Dask
+cluster: each is a cold solve of its own case, so the rows do not depend on where or in
+which order they were solved.
 
 Examples
 --------
@@ -23,8 +25,10 @@ from __future__ import annotations
 
 import math
 import signal
+import threading
 import time
 from contextlib import contextmanager
+from functools import lru_cache, partial
 
 import numpy as np
 
@@ -34,8 +38,8 @@ from ..models.fit_groups import GROUPS, KB_FLOOR, NODES, box, coordinates
 from ..models.registry import make_options, model_spec
 from ..sweeps.keyed import run_points
 
-__all__ = ["design", "case_of_groups", "solve_point", "run", "recheck", "COLUMNS",
-           "HOLD_OUT_EVERY"]
+__all__ = ["design", "case_of_groups", "solve_point", "solve_design_point", "run", "recheck",
+           "COLUMNS", "HOLD_OUT_EVERY", "time_limit", "TimeLimit"]
 
 #: Every this many points one is held out (n % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1).
 HOLD_OUT_EVERY = 5
@@ -106,22 +110,117 @@ def case_of_groups(g: dict[str, float]) -> Case:
         "air.mean_free_path": g["slip"] * h_s / 6.0})
 
 
+class TimeLimit:
+    """What :func:`time_limit` yields: ``expired`` once the time is up (an exception raised
+    in the meantime, whatever its type, is the limit's: library code that catches errors
+    may turn the TimeoutError into another)."""
+
+    __slots__ = ("seconds", "expired")
+
+    def __init__(self, seconds: float | None):
+        self.seconds, self.expired = seconds, False
+
+    @property
+    def message(self) -> str:
+        return f"no answer within {self.seconds:g} s"
+
+
+#: After the limit, the TimeoutError is raised again this often [s] until the block ends
+#: (code that catches every error would otherwise swallow it and go on without a limit).
+_AGAIN_S = 1.0
+
+
 @contextmanager
 def time_limit(seconds: float | None):
-    """Raise TimeoutError after ``seconds`` (main thread, Unix); no limit where the
-    platform has no SIGALRM."""
-    if not seconds or not hasattr(signal, "SIGALRM"):
+    """Raise TimeoutError in the calling thread after ``seconds`` (again every
+    :data:`_AGAIN_S` until the block ends); yields a :class:`TimeLimit`. No limit where the
+    platform has neither SIGALRM nor CPython's asynchronous exceptions.
+
+    In the main thread (a serial campaign, a local worker process) by SIGALRM. A Dask
+    worker solves in a thread of its own, which signals never reach: there a timer thread
+    raises the error into it (``PyThreadState_SetAsyncExc``). Either way Python raises it
+    between bytecodes, so a long call into compiled code (a sparse factorisation) ends
+    first: the two limits behave alike."""
+    limit = TimeLimit(seconds)
+    if not seconds:
+        yield limit
+    elif threading.current_thread() is not threading.main_thread():
+        with _thread_time_limit(limit):
+            yield limit
+    elif not hasattr(signal, "SIGALRM"):
+        yield limit
+    else:
+        def stop(signum, frame):
+            limit.expired = True
+            raise TimeoutError(limit.message)
+        old = signal.signal(signal.SIGALRM, stop)
+        try:        # armed inside: the clean-up runs however soon the limit strikes
+            signal.setitimer(signal.ITIMER_REAL, seconds, _AGAIN_S)
+            yield limit
+        finally:
+            _despite_timeouts(lambda: (signal.setitimer(signal.ITIMER_REAL, 0),
+                                       signal.signal(signal.SIGALRM, old)))
+
+
+def _despite_timeouts(step) -> None:
+    """``step()`` to its end, though a timeout raised meanwhile interrupts it: the clean-up
+    of a limit must not be cut short by the limit (the error already on its way is the one
+    the caller sees)."""
+    while True:
+        try:
+            step()
+            return
+        except TimeoutError:
+            continue
+
+
+class _Timeout(TimeoutError):
+    """The TimeoutError raised into a thread (raised as its class, without arguments)."""
+
+    limit: TimeLimit
+
+    def __str__(self) -> str:
+        return self.limit.message
+
+
+@contextmanager
+def _thread_time_limit(limit: TimeLimit):
+    """:func:`time_limit` in a thread other than the main one."""
+    try:
+        import ctypes
+        set_async = ctypes.pythonapi.PyThreadState_SetAsyncExc
+    except (ImportError, AttributeError):     # not CPython: no limit
         yield
         return
-    def stop(signum, frame):
-        raise TimeoutError(f"no answer within {seconds:g} s")
-    old = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    ident = ctypes.c_ulong(threading.get_ident())
+    error = type("TimeoutError", (_Timeout,), {"limit": limit})   # carries the message
+    guard = threading.Lock()
+    ended = threading.Event()
+    state = {"done": False}
+
+    def watch():
+        wait = limit.seconds
+        while not ended.wait(wait):
+            with guard:          # never after the block has ended
+                if state["done"]:
+                    return
+                limit.expired = True
+                set_async(ident, ctypes.py_object(error))
+            wait = _AGAIN_S
+
+    def end():
+        with guard:
+            state["done"] = True
+        ended.set()
+        # a timeout raised but not yet delivered (the block ended meanwhile) must not
+        # surface later in this thread: withdraw it
+        set_async(ident, None)
+
     try:
+        threading.Thread(target=watch, daemon=True, name="webfem time limit").start()
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
+        _despite_timeouts(end)
 
 
 def profile_of(result) -> tuple[np.ndarray, np.ndarray]:
@@ -143,13 +242,22 @@ def solve_point(n: int, g: dict[str, float], *, timeout: float | None = 120.0,
     row.update(n=n, holdout=int(n % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1),
                **{f"g_{k}": float(g[k]) for k in GROUPS}, converged=False, message="")
     t0 = time.perf_counter()
+    limit = None
     try:
         case = case_of_groups(g)
         opts = make_options("fe2d", options)
-        with time_limit(timeout):
-            r = model_spec("fe2d").solve(case, opts, raise_on_failure=False)
-    except (InputError, TimeoutError, ArithmeticError, RuntimeError, ValueError) as err:
-        row.update(seconds=time.perf_counter() - t0, message=f"{type(err).__name__}: {err}")
+        spec = model_spec("fe2d")
+        with time_limit(timeout) as limit:
+            r = spec.solve(case, opts, raise_on_failure=False)
+    except Exception as err:   # noqa: BLE001 - the expected failures, or the time limit's
+        if limit is not None and limit.expired:    # whatever the error became on its way
+            message = f"TimeoutError: {limit.message}"
+        elif isinstance(err, (InputError, TimeoutError, ArithmeticError, RuntimeError,
+                              ValueError)):
+            message = f"{type(err).__name__}: {err}"
+        else:
+            raise
+        row.update(seconds=time.perf_counter() - t0, message=message)
         return row
     row["seconds"] = time.perf_counter() - t0
     s = r.summary
@@ -171,14 +279,21 @@ FE2D_OPTIONS = {"estimate": False}
 
 
 def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
-        options=None, progress=None) -> list[dict]:
+        options=None, progress=None, workers: int = 1, dask: str | None = None,
+        retry_failed: bool = False) -> list[dict]:
     """Solve (or resume) the first ``n`` design points into ``out_csv``; returns the rows.
-    Points that fail are kept (each is solved from cold: a re-run would repeat it).
-    ``options``: fe2d's (default :data:`FE2D_OPTIONS`)."""
+
+    Points that fail are kept (each is solved from cold: a re-run would repeat it) unless
+    ``retry_failed``: then they are solved again (with a longer ``timeout``, or after a
+    change to the solver that keeps the campaign's signature: a new webfem version starts
+    the table afresh). ``options``: fe2d's (default :data:`FE2D_OPTIONS`). ``workers`` local
+    processes, or a Dask cluster (``dask``: ``"local"`` with ``workers`` processes, or a
+    scheduler's address), as :func:`webfem.sweeps.keyed.run_points` runs them: every point
+    is a cold solve of its own case, so the rows are those of a serial run (the CSV in
+    design order at the end); ``timeout`` limits each point in its worker."""
     options = dict(FE2D_OPTIONS if options is None else options)
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
         raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
-    G = design(n, seed)
     from .. import __version__
     # not the number of points: the design's first n points are those of any longer one,
     # so a run with more points extends the campaign (it used to start the table afresh)
@@ -188,32 +303,55 @@ def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
     # the key is the design index: the same seed gives the same point
     return run_points(out_csv, sig, COLUMNS,
                       ("n",), [(float(i),) for i in range(n)],
-                      lambda i: solve_point(i, dict(zip(GROUPS, G[i])), timeout=timeout,
-                                                options=options),
-                      progress=progress, keep_failures=True)
+                      partial(solve_design_point, points=n, seed=seed, timeout=timeout,
+                              options=options),
+                      progress=progress, keep_failures=not retry_failed, workers=workers,
+                      dask=dask)
+
+
+def solve_design_point(i: int, *, points: int, seed: int, timeout: float | None,
+                       options) -> dict:
+    """The row of design point ``i`` of the first ``points`` (:func:`solve_point`): a
+    module function, so a worker process or a Dask worker can be sent it; each computes
+    the design once (a point's task carries its index, not the design)."""
+    G = _design(points, seed)
+    return solve_point(i, dict(zip(GROUPS, G[i])), timeout=timeout, options=options)
+
+
+@lru_cache(maxsize=2)
+def _design(n: int, seed: int) -> np.ndarray:
+    """:func:`design`, once per process (read only)."""
+    G = design(n, seed)
+    G.flags.writeable = False
+    return G
 
 
 def recheck(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
-            options=None, progress=None) -> list[dict]:
+            options=None, progress=None, workers: int = 1, dask=None) -> list[dict]:
     """Solve (or resume) the hold-out points among the first ``n`` design points again,
     with the current fe2d and physics, into ``out_csv``; returns the rows. For a fit trained
     on rows of an earlier physics (the shipped one: the web held at the zones' ends, before
     ``wrap.ends = "span"`` became the default): its stated errors are then measured against
     what fe2d answers now (:func:`webfem.studies.fit_build.build`'s ``holdout_csv``).
-    Points that fail are solved again on a re-run."""
+    Points that fail are solved again on a re-run; ``workers`` and ``dask`` as :func:`run`."""
     options = dict(FE2D_OPTIONS if options is None else options)
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
         raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
-    G = design(n, seed)
     idx = [i for i in range(n) if i % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1]
     from .. import __version__
     sig = {"table": "fit-holdout-recheck", "parameter": "groups", "model": "fe2d",
            "design": "scrambled Sobol prefix", "seed": seed, "webfem": __version__,
            "options": options, "physics": "default (wrap.ends = span, 1 m)"}
+    # keyed by the design index, as the campaign's rows are
     return run_points(out_csv, sig, COLUMNS, ("n",), [(float(i),) for i in idx],
-                      lambda k: solve_point(idx[k], dict(zip(GROUPS, G[idx[k]])),
-                                            timeout=timeout, options=options),
-                      progress=progress)
+                      partial(_solve_held_out, held=tuple(idx), points=n, seed=seed,
+                              timeout=timeout, options=options),
+                      progress=progress, workers=workers, dask=dask)
+
+
+def _solve_held_out(k: int, *, held: tuple, **kw) -> dict:
+    """The row of the ``k``-th hold-out point (:func:`solve_design_point`)."""
+    return solve_design_point(held[k], **kw)
 
 
 def coordinates_of_rows(rows) -> np.ndarray:

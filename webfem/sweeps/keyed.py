@@ -27,7 +27,7 @@ from .runner import SweepInterrupted
 from .lock import SweepLock
 from .store import Store
 from .table import typed
-from .workers import Processes
+from .workers import Dask, Processes, check_dask, check_workers
 
 __all__ = ["run_points", "exact_key"]
 
@@ -40,7 +40,8 @@ def exact_key(values) -> tuple[str, ...]:
 def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequence[str],
                points: Sequence[Sequence[float]], solve: Callable[[int], dict], *,
                progress: Callable[[int, int], None] | None = None,
-               keep_failures: bool = False, workers: int = 1) -> list[dict]:
+               keep_failures: bool = False, workers: int = 1,
+               dask: str | None = None) -> list[dict]:
     """Solve (or resume) every point, saving each row as it finishes.
 
     Parameters
@@ -66,7 +67,13 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     workers : int
         1: the points in order in this process; N > 1: in a pool of N local processes
         (``solve`` must then be picklable, and each point independent of the others), each
-        row saved as it arrives (the CSV is in point order at the end).
+        row saved as it arrives (the CSV is in point order at the end; an interrupted
+        run's is in the order the rows finished).
+    dask : str, optional
+        Run the points on Dask instead, one task per point: ``"local"`` starts a
+        LocalCluster of ``workers`` processes, ``"tcp://host:port"`` joins a running
+        scheduler (connected before the table is touched; ``solve`` must be importable by
+        the cluster's workers). A Dask worker solves in a thread, not its main one.
 
     Returns
     -------
@@ -80,6 +87,8 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     SweepInterrupted
         Ctrl-C: the files are closed, the lock released; says how many points are saved.
     """
+    check_workers(workers)
+    check_dask(dask)
     csv_path = Path(csv_path)
     keys = {exact_key(p): n for n, p in enumerate(points)}
     if len(keys) != len(points):
@@ -90,16 +99,21 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     store.check_paths()
     lock = SweepLock(csv_path, sig, len(points))
     saved = 0
+    engine = None
     try:
         lock.acquire()
         done = store.load(keys)
         saved = len(done)                       # the rows a re-run keeps
-        store.start(done)
         total = len(points)
+        todo = [n for n in range(total) if n not in done]
+        if dask is not None and todo:
+            engine = Dask(dask, workers)        # an unreachable scheduler: before any write
+        elif workers > 1 and len(todo) > 1:
+            engine = Processes(min(workers, len(todo)))
+        store.start(done)
         finished = len(done)
         if progress and done:
             progress(finished, total)
-        todo = [n for n in range(total) if n not in done]
 
         def record(n: int, row: dict) -> None:
             nonlocal saved, finished
@@ -109,12 +123,8 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
             if progress:
                 progress(finished, total)
 
-        if workers > 1 and len(todo) > 1:
-            pool = Processes(min(workers, len(todo)))
-            try:
-                pool.run([(n, (n,)) for n in todo], record, task=solve)
-            finally:
-                pool.close()
+        if engine is not None:
+            engine.run([(n, (n,)) for n in todo], record, task=solve)
         else:
             for n in todo:
                 record(n, solve(n))
@@ -124,5 +134,7 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     finally:
         try:
             store.close()
+            if engine is not None:
+                engine.close()
         finally:
             lock.release()

@@ -16,7 +16,6 @@ serial, resumed, process and Dask sweeps write the same rows, in sweep order.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -28,14 +27,13 @@ from ..result import Result
 from .lock import SweepLock
 from .store import Store, point_key, signature
 from .table import failure_row, sweep_rows, typed
-from .workers import MAX_WORKERS, Dask, PointError, Processes, solve_path
+from .workers import MAX_WORKERS, Dask, PointError, Processes, check_dask, solve_path
 
 __all__ = ["run", "SweepInterrupted", "CHUNK"]
 
 #: Default most points per parallel task: each chunk's first point starts cold, which costs
 #: iterations; longer chunks cost balance at the end and more work lost to Ctrl-C.
 CHUNK = 10
-_DASK_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://[^\s/]+$")
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -66,10 +64,7 @@ def _checked(spec, workers, chunk, dask) -> list[_Point]:
                 hi is not None and value > hi):
             raise InputError(f"{name} = {value!r} is out of range: must be an integer >= 1"
                              + (f" and <= {hi}" if hi else ""))
-    if dask is not None and dask != "local" and not (
-            isinstance(dask, str) and _DASK_ADDRESS.match(dask)):
-        raise InputError(f"dask = {dask!r} is not valid: must be 'local' (a cluster on this "
-                         "machine) or a scheduler address such as 'tcp://host:8786'")
+    check_dask(dask)
     points = [_Point(si, pi, label, float(value), base.updated({spec.parameter: value}))
               for si, (label, base) in enumerate(spec.series)
               for pi, value in enumerate(spec.values)]

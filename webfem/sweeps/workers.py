@@ -8,6 +8,7 @@ the main process alone stops the sweep, then ends its workers (no worker traceba
 from __future__ import annotations
 
 import logging
+import re
 import signal
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -16,10 +17,22 @@ from ..api import solve_along
 from ..errors import InputError, NoAdmissibleSolution
 from ..result import Result
 
-__all__ = ["solve_chunk", "PointError", "solve_path", "Processes", "Dask", "DASK_TIMEOUT_S"]
+__all__ = ["solve_chunk", "PointError", "solve_path", "Processes", "Dask", "DASK_TIMEOUT_S",
+           "check_workers", "check_dask"]
 
 #: Seconds to wait for a Dask scheduler before giving up.
 DASK_TIMEOUT_S = 10
+_DASK_ADDRESS = re.compile(r"^(tcp|tls|ws|wss|ucx)://[^\s/]+$")
+
+
+def check_dask(dask) -> str | None:
+    """``dask`` when it is None, ``"local"`` or a scheduler address, else an input error
+    naming it (before any work: a typo must not cost a campaign's first points)."""
+    if dask is not None and dask != "local" and not (
+            isinstance(dask, str) and _DASK_ADDRESS.match(dask)):
+        raise InputError(f"dask = {dask!r} is not valid: must be 'local' (a cluster on this "
+                         "machine) or a scheduler address such as 'tcp://host:8786'")
+    return dask
 
 
 @dataclass(frozen=True)
@@ -91,11 +104,14 @@ class Dask:
             raise InputError(f"dask = {address!r}: no Dask scheduler answered within "
                              f"{DASK_TIMEOUT_S} s ({reason})") from None
 
-    def run(self, tasks, record):
+    def run(self, tasks, record, task=solve_chunk):
+        """``task(*args)`` for each ``(key, args)`` of ``tasks`` on the cluster (``task``
+        must be importable by its workers); ``record(key, value)`` as each finishes (in the
+        calling process)."""
         from dask.distributed import as_completed
         futures = {}
         try:
-            futures = {self.client.submit(solve_chunk, *args, pure=False): chunk
+            futures = {self.client.submit(task, *args, pure=False): chunk
                        for chunk, args in tasks}
             for fut in as_completed(list(futures)):
                 record(futures[fut], fut.result())
