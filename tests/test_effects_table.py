@@ -20,7 +20,7 @@ def test_effects_table_switches_each_effect_off(idler):
     table = effects_table(case, "fe1d")
     assert [r.effect for r in table.rows] == ["all included", "inertia", "bending", "slip",
                                               "isothermal-permeation", "load-friction",
-                                              "roughness-flow"]
+                                              "roughness-flow", "spans"]
     direct = webfem.solve(case.updated(SWITCH_OFF["inertia"]), model="fe1d")
     row = table.rows[1]
     # two solves of one case agree to round-off (the linear solver reuses orderings)
@@ -35,11 +35,11 @@ def test_effects_cli_prints_the_table(capsys):
     assert main(["effects", "cases/base.toml", "--model", "fe1d", "--quiet"]) == 0
     out = capsys.readouterr().out
     for effect in ("bending", "slip", "isothermal-permeation", "load-friction",
-                   "roughness-flow"):
+                   "roughness-flow", "spans"):
         assert effect in out
     assert main(["effects", "cases/base.toml", "--model", "closed-form", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["not_carried"] == ["bending", "slip", "isothermal-permeation"]
+    assert data["not_carried"] == ["bending", "slip", "isothermal-permeation", "spans"]
 
 
 def test_idler_margin_falls_with_line_speed(idler, tmp_path, capsys):

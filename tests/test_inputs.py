@@ -22,10 +22,13 @@ def test_mesh_file_missing_or_not_a_mesh(tmp_path):
 
 
 def test_mesh_file_is_used(capsys):
-    """A stored mesh gives the answer of the generated one (it is the same mesh)."""
+    """A stored mesh (fe2d's start mesh of the case, meshes/) gives the answer of the
+    generated one within their stated errors: the two are refined apart (with the web held
+    through its spans, the generated one is bisected once more)."""
     a = webfem.solve(Case(), model="fe1d", mesh="meshes/base_web.vtu")
     b = webfem.solve(Case(), model="fe1d")
-    assert a["h_center"] == pytest.approx(b["h_center"], rel=1e-9)
+    change = abs(a["h_center"] - b["h_center"]) / b["h_center"]
+    assert 0.0 < change <= max(a["error_h_center"], b["error_h_center"])
     assert a["mesh"].startswith("user mesh")
 
 

@@ -75,13 +75,14 @@ def test_the_estimate_refines_where_the_start_mesh_is_coarse():
 def test_a_smooth_roller_bisects_only_the_direction_whose_error_is_larger():
     """On a smooth roller too, an estimate above the target bisects only the direction whose
     error is the larger (from one more solve, on the mesh coarser across the width only):
-    the base case's h_min error (6.8e-4 on 10,105 unknowns) is along x, so a target of 5e-4
-    doubles the x cells and keeps the width's, where bisecting every cell quadrupled the
-    unknowns (the speed sweep's 22.6 m/s: 35,927 -> 18,745)."""
-    start = webfem.solve(BASE, model="fe2d")
-    fine = webfem.solve(BASE, model="fe2d", error_tol=5e-4)
-    assert start["error_h_min"] > 5e-4
-    assert all(fine[f"error_{q}"] <= 5e-4 for q in READ_QUANTITIES)
+    the base case's h_min error (1.3e-3 on 10,105 unknowns, the web held through its spans)
+    is along x, so the default target of 1e-3 doubles the x cells and keeps the width's, where
+    bisecting every cell quadrupled the unknowns (the speed sweep's 22.6 m/s: 35,927 ->
+    18,745)."""
+    start = webfem.solve(BASE, model="fe2d", error_tol=2e-3)
+    fine = webfem.solve(BASE, model="fe2d")
+    assert start["error_h_min"] > 1e-3 and start["n_dofs"] == 10_105
+    assert all(fine[f"error_{q}"] <= 1e-3 for q in READ_QUANTITIES)
     assert fine["width_cells"] == start["width_cells"]
     assert fine["n_cells"] == 2 * start["n_cells"]
     assert "along x and across the width, summed" in fine["error_basis"]

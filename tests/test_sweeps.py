@@ -105,9 +105,11 @@ def test_closed_form_sweep_resumes_nothing_to_do(tmp_path):
 
 
 def test_a_sweep_stored_before_a_new_case_key_resumes(tmp_path):
-    """A case key added later with nothing set (wrap.span, left out: None) is not a
+    """A case key added later with nothing set (its value left out: None) is not a
     difference: the sweep stored without it resumes (make run refused its own out/ after
-    the key was added: "holds another sweep (series 'base' with other case values)")."""
+    wrap.span was added: "holds another sweep (series 'base' with other case values)"). A
+    key added later whose default is a value (wrap.ends = "span", which moves the answers)
+    is one: the sweep stored before it is another sweep."""
     import json
 
     spec = small(values=(10.0, 20.0, 30.0))
@@ -115,13 +117,19 @@ def test_a_sweep_stored_before_a_new_case_key_resumes(tmp_path):
     sidecar = tmp_path / "c.sweep.json"
     sig = json.loads(sidecar.read_text())
     for _, case in sig["series"]:
-        assert case["wrap"].pop("span") is None
+        assert case["web"].pop("bending_stiffness") is None
     sidecar.write_text(json.dumps(sig))
     calls, progress = counter()
     again = run(spec, "closed-form", tmp_path / "c.csv", progress=progress)
     assert calls == [] and again == rows
     for _, case in sig["series"]:            # a value set where it was not: another sweep
-        case["wrap"]["span"] = 1.0
+        case["web"]["bending_stiffness"] = 1e-4
+    sidecar.write_text(json.dumps(sig))
+    with pytest.raises(InputError, match="other case values"):
+        run(spec, "closed-form", tmp_path / "c.csv")
+    for _, case in sig["series"]:            # stored before wrap.ends existed
+        case["web"]["bending_stiffness"] = None
+        assert case["wrap"].pop("ends") == "span"
     sidecar.write_text(json.dumps(sig))
     with pytest.raises(InputError, match="other case values"):
         run(spec, "closed-form", tmp_path / "c.csv")

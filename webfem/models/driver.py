@@ -247,13 +247,15 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
         info.iterations += mesh_error.iterations
         if finer is not None:
             rounds = mesh_error.rounds
+            # the start's notes (a cold start after a failed continued one) stay said
+            noted = info.reason.partition(" (")[2]
             info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
                                 "history": list(info.history) + list(finer.history),
                                 "reason": f"{finer.reason} (on the mesh the error estimate "
                                           f"asked for, " + (mesh_error.refined or
                                           f"{rounds} bisection{'s' if rounds > 1 else ''} "
                                           "of the cells along x, across the width or both")
-                                          + ")"})
+                                          + ")" + (f" ({noted}" if noted else "")})
     result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
                           options, start, mesh_error)
     crushed = None if result.summary.converged else through_thickness(case, prm)
