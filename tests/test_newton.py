@@ -170,3 +170,44 @@ def test_a_jacobian_with_nan_entries_ends_the_solve_without_factorising_it(capfd
     out = nw.newton(F, J, np.zeros(2), tol=1e-12, max_iter=5)
     assert not out.converged and out.reason == "Jacobian not finite"
     assert "illegal" not in capfd.readouterr().err
+
+
+def _soft(scale=1e8, soft=1e-12, n=50):
+    """:func:`_stiff` with the first unknown a soft mode (row 0: ``soft`` scale (u0 - 2)):
+    the floor's noise in its row moves it by noise / (soft scale), about 1e-3, far above
+    :data:`FLOOR_STEP` (a stiff web held through long spans: webfem/fem/ends.py)."""
+    F, J = _stiff(scale, n)
+
+    def Fs(u):
+        r = F(u)
+        r[0] += scale * (soft * (u[0] - 2.0) - (u[0]**3 - 8.0))
+        return r
+
+    def Js(u):
+        A = J(u).tolil()
+        A[0, 0] = scale * soft
+        return A.tocsr()
+    return Fs, Js
+
+
+def test_a_correction_that_is_the_floors_noise_is_converged_where_asked():
+    """A soft mode amplifies the rounding floor's noise into corrections no step along
+    which lowers the residual: with ``noise`` the iterate is converged (its correction as
+    large as random residuals' of its size), without it the line search fails."""
+    F, J = _soft()
+    u0 = np.full(50, 1.5)
+    strict = nw.newton(F, J, u0, tol=1e-9, step_tol=1e-10, max_iter=60)
+    assert not strict.converged
+    out = nw.newton(F, J, u0, tol=1e-9, step_tol=1e-10, max_iter=60, noise=True)
+    assert out.converged and "random residual" in out.reason
+    floor = nw.rounding_floor(J(out.u), out.u, np.arange(50))
+    assert out.residual <= nw.FLOOR_FACTOR * floor
+    assert np.max(np.abs(out.u[1:] - 2.0)) < 1e-12
+    assert 1e-6 < abs(out.u[0] - 2.0) < 1e-1       # the soft mode: as precise as it gets
+
+
+def test_noise_accepts_no_residual_above_its_floor():
+    F, J = _noisy(1e-6)          # 1000 x the tolerance: not a rounding floor
+    out = nw.newton(F, J, np.full(50, 1.5), tol=1e-9, step_tol=1e-10, max_iter=60,
+                    noise=True)
+    assert not out.converged

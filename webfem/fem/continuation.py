@@ -28,7 +28,7 @@ from .grooves import GroovePattern
 from .outcome import SolveInfo
 
 __all__ = ["geometric", "web_width", "groove_depth", "eshel_elrod", "film_strength",
-           "FIRST_TRY", "FIRST_DEPTH", "STEP_ITER"]
+           "tangent_step", "FIRST_TRY", "FIRST_DEPTH", "STEP_ITER"]
 
 #: Newton steps a direct attempt (or the jump to s = 1) gets before the stepped path.
 FIRST_TRY = 25
@@ -190,6 +190,17 @@ def eshel_elrod(problem, prm, tol, max_iter, before: SolveInfo | None = None):
             s = min(1.0, s_prev + ds)
 
 
+def tangent_step(problem, u, before, after) -> np.ndarray:
+    """``u``, solved for the parameters ``before``, moved along the path's tangent to
+    ``after``: u - J(u)^-1 (F(u; after) - F(u; before)), the Euler step for a residual affine
+    in the path's parameter, taken whole (no line search). ``u`` where it is not finite."""
+    J = problem.jacobian(u, before)
+    change = (problem.residual(u, after) - problem.residual(u, before))[problem.free]
+    v = np.array(u, copy=True)
+    v[problem.free] -= problem.solver.factor(J, problem.free)(change)
+    return v if np.all(np.isfinite(v)) else u
+
+
 def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
     """Newton along the film's strength a (the factor of the Couette flux,
     ``prm.film_strength(a)``) from 0 to 1, starting from the web resting on its asperities.
@@ -204,6 +215,12 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
     roller, on mesh levels 0 and 2 alike), where :func:`eshel_elrod`'s path stalls, and Newton
     from a resting guess with the film at full strength fails its line search.
     Needs asperity contact (``prm.contact``): without it nothing holds the web at a = 0.
+    With the web held through spans (``problem.spans``), each step starts on the path's
+    tangent (:func:`tangent_step`) and, where the steps stall, the jump to a = 1 is tried
+    from the last state: a stiff web's spans have nearly singular Jacobians, and a start
+    this close to the last state has its residual near the rounding floor, where Newton's
+    corrections are noise (a 1 mm board held through 1 m spans stalled at a = 0.38 on its
+    refined meshes). The held ends keep the path as it was.
     Returns ``(u, SolveInfo)`` with the strengths passed in ``steps``."""
     done = before if before is not None else SolveInfo(steps=[])
     if not prm.contact:
@@ -222,10 +239,17 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
         return out.u, done
     u, steps = out.u, [0.0]
     a_prev, da, jump = 0.0, 0.25, True
+    spans, rejumped = bool(getattr(problem, "spans", False)), False
     while True:
         a = 1.0 if jump else min(1.0, a_prev + da)
+        # with spans, each step starts on the path's tangent: from the last state itself
+        # the steps of a 1 mm board (base roller, span 1 m) failed their line search from
+        # a = 0.38 on (the corrections at the rounding floor are large, see
+        # FoilBearing1D.newton); the held ends keep their path as it was
+        start = u if jump or not spans else \
+            tangent_step(problem, u, prm.film_strength(a_prev), prm.film_strength(a))
         with stage(f"film strength continuation, a = {a:.3g}"):
-            out = problem.newton(u, prm.film_strength(a), tol,
+            out = problem.newton(start, prm.film_strength(a), tol,
                                  min(max_iter, FIRST_TRY) if jump else max_iter)
         done = SolveInfo.of(out, steps).after(done)
         if out.converged and problem.vacuum(out.u, prm):
@@ -243,8 +267,20 @@ def film_strength(problem, prm, tol, max_iter, before: SolveInfo | None = None):
             da = min(2.0 * da, 1.0)
         elif not jump:      # a failed jump goes on with the first step, da = 0.25
             da *= 0.25
+            if da < 1e-4 and spans and not rejumped:
+                # with spans, the jump to a = 1 from where the steps stalled: the 1 mm
+                # board's steps on its first refined mesh stalled at a = 0.894 (starts
+                # this close put the residual near its rounding floor, where the
+                # corrections are noise), the jump from there converged in 6 Newton steps
+                rejumped = jump = True
+                continue
             if da < 1e-4:
                 done.steps = steps
                 done.reason = f"film strength continuation stalled at a = {a_prev:.4g}"
                 return u, done
+        elif rejumped:
+            done.steps = steps
+            done.reason = (f"film strength continuation stalled at a = {a_prev:.4g}, and "
+                           "the jump to a = 1 from there failed")
+            return u, done
         jump = False

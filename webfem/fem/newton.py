@@ -263,7 +263,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
            step_tol: float = 1e-10, max_iter: int = 50, min_damping: float = 1e-4,
            monitor: Callable[[int, float], None] | None = None,
            rtol: float = 0.0, chord: bool = True,
-           solver: PatternSolver | None = None) -> NewtonResult:
+           solver: PatternSolver | None = None, noise: bool = False) -> NewtonResult:
     """Solve F(u) = 0 for the ``free`` entries of u (others keep u0's values).
 
     Converged when ||F||_2 <= max(tol, rtol ||F(u0)||_2), or when the full Newton step's
@@ -292,6 +292,13 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
 
     ``solver``: the :class:`PatternSolver` whose plans the factorisations reuse (a discrete
     problem keeps its own; default: :data:`SOLVER`).
+
+    ``noise``: where no step lowers a residual within FLOOR_FACTOR of its rounding floor,
+    the iterate is also accepted when the correction is no larger than
+    :data:`NOISE_FACTOR` times the corrections of random residuals of the same norm
+    (:func:`noise_correction`): the correction is then the floor's noise amplified by
+    J^-1, however large J^-1 makes it (a problem with a soft mode: a stiff web held
+    through long spans, :mod:`webfem.fem.ends`).
     """
     u = np.array(u0, dtype=float, copy=True)
     free = np.arange(u.size) if free is None else np.asarray(free)
@@ -360,6 +367,13 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                 if norm <= FLOOR_FACTOR * floor:
                     return NewtonResult(u, True, it - 1, norm, history,
                                         _at_floor(norm, tol, floor) + _noise_step(du, u, free))
+            if alpha < min_damping and noise and not tiny and tol >= STRICT_BELOW:
+                floor = rounding_floor(Jm, u, free)
+                if norm <= FLOOR_FACTOR * floor and np.max(np.abs(du)) <= \
+                        NOISE_FACTOR * noise_correction(last, norm, len(free)):
+                    return NewtonResult(u, True, it - 1, norm, history,
+                                        _at_floor(norm, tol, floor) + _noise_step(du, u, free)
+                                        + " (as large as a random residual's of that size)")
             if alpha < min_damping:
                 return NewtonResult(u, False, it, norm, history,
                                     f"the residual stalls at {norm:.3g}, above the tolerance "
@@ -383,6 +397,21 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                                 f"{tol:.3g} and {FLOOR_FACTOR:g} x its rounding floor "
                                 f"{floor:.3g}")
     return NewtonResult(u, norm <= tol, it, norm, history, "iteration limit")
+
+
+#: How many times the largest correction of :data:`NOISE_SAMPLES` random residuals a
+#: correction may be and still count as noise (``newton(noise=True)``).
+NOISE_FACTOR = 2.0
+NOISE_SAMPLES = 4
+
+
+def noise_correction(solve, norm: float, n: int) -> float:
+    """The largest max-norm correction ``solve`` (a factorised Jacobian) gives for
+    :data:`NOISE_SAMPLES` random residuals of 2-norm ``norm`` (Gaussian directions of a
+    fixed seed: the same answer every run): what rounding noise of that size moves the
+    iterate by."""
+    z = np.random.default_rng(0).standard_normal((NOISE_SAMPLES, n))
+    return max(float(np.max(np.abs(solve(norm * v / norm2(v))))) for v in z)
 
 
 def _at_floor(norm, tol, floor) -> str:
