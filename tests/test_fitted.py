@@ -93,6 +93,18 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
                  "--json", "--quiet"]) == 0
     grown = json.loads(capsys.readouterr().out)
     assert grown["train"] + grown["holdout"] + grown["failed"] == 7
+    assert not grown["holdout_rechecked"]
+    # --recheck: the hold-out point (design point 4) solved again with today's physics into
+    # holdout.csv, whose rows then state the errors; here the physics is the same, so the
+    # answers and the stated table are too
+    assert main(["fit", "build", "--points", "7", "--store", str(store), "--timeout", "30",
+                 "--recheck", "--fit-only", "--json", "--quiet"]) == 0
+    rechecked = json.loads(capsys.readouterr().out)
+    assert rechecked["holdout_rechecked"] and rechecked["holdout"] == grown["holdout"]
+    assert rechecked["stated"] == grown["stated"]
+    from webfem.sweeps.table import read_table, typed
+    rows = typed(read_table(store / "holdout.csv").rows)
+    assert [r["n"] for r in rows] == [4]
     assert (store / "campaign.csv").read_text().splitlines()[:7] == before
     # the fit does not depend on the order of the rows (an interrupted parallel run leaves
     # them in the order they finished): the rows reversed refit to the same arrays

@@ -292,8 +292,7 @@ def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
     is a cold solve of its own case, so the rows are those of a serial run (the CSV in
     design order at the end); ``timeout`` limits each point in its worker."""
     options = dict(FE2D_OPTIONS if options is None else options)
-    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
-        raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
+    _check_points(n)
     from .. import __version__
     # not the number of points: the design's first n points are those of any longer one,
     # so a run with more points extends the campaign (it used to start the table afresh)
@@ -307,6 +306,12 @@ def run(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
                               options=options),
                       progress=progress, keep_failures=not retry_failed, workers=workers,
                       dask=dask)
+
+
+def _check_points(n) -> None:
+    """Refuse a number of design points that is not an integer 1-100000, naming it."""
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
+        raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
 
 
 def solve_design_point(i: int, *, points: int, seed: int, timeout: float | None,
@@ -335,8 +340,7 @@ def recheck(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
     what fe2d answers now (:func:`webfem.studies.fit_build.build`'s ``holdout_csv``).
     Points that fail are solved again on a re-run; ``workers`` and ``dask`` as :func:`run`."""
     options = dict(FE2D_OPTIONS if options is None else options)
-    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100_000:
-        raise InputError(f"points = {n!r} is out of range: must be an integer 1-100000")
+    _check_points(n)
     idx = [i for i in range(n) if i % HOLD_OUT_EVERY == HOLD_OUT_EVERY - 1]
     from .. import __version__
     sig = {"table": "fit-holdout-recheck", "parameter": "groups", "model": "fe2d",
