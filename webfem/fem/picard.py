@@ -20,7 +20,7 @@ from typing import Callable
 import numpy as np
 
 from ..progress import report
-from .newton import _factorised, norm2
+from .newton import factorised, norm2
 from .outcome import SolveInfo
 
 __all__ = ["PicardResult", "picard", "frozen_coefficient_picard", "lift_correction"]
@@ -151,7 +151,7 @@ def frozen_coefficient_picard(problem, u0, prm, tol=1e-9, omega=1.0, aitken=True
         if not np.isfinite(last["norm"]):
             raise FloatingPointError("residual not finite")
         A = problem.jacobian(v, prm, newton=False).tocsr()[free][:, free].tocsc()
-        solve = _factorised(A)
+        solve = factorised(A)
         step = solve(F)
         if lift is None:
             return x - step
