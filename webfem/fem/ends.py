@@ -28,7 +28,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["end_springs", "springs", "shortest_span", "with_springs", "jacobian_with_springs"]
+__all__ = ["end_springs", "springs", "shortest_span", "with_springs", "jacobian_with_springs",
+           "uniform_lift"]
 
 
 def shortest_span(X, beta: float) -> float:
@@ -81,3 +82,12 @@ def jacobian_with_springs(J, ends, springs):
             raise ValueError(f"row {i} has no single diagonal entry")
         J.data[J.indptr[i] + at[0]] += k
     return J
+
+
+def uniform_lift(n: int, values) -> np.ndarray:
+    """The DOF vector of the web lifted by 1 everywhere (its deflection ``values`` 1, slopes
+    and pressures 0): the mode only the spans' springs and the film's gap sensitivity hold
+    where the ends are unknowns (:func:`webfem.fem.picard.lift_correction`)."""
+    z = np.zeros(n)
+    z[np.asarray(values)] = 1.0
+    return z

@@ -153,6 +153,8 @@ class FoilBearing2D:
         px = self.line.p[0]
         #: the web's deflection at the domain's entry and exit ends
         self.iW_ends = self.iWv[[int(np.argmin(px)), int(np.argmax(px))]]
+        #: the web's uniform lift, where its ends are unknowns (Picard corrects along it)
+        self.lift = ends.uniform_lift(self.n_dofs, self.iWv) if self.spans else None
         self._mass, self._system, self._solver = None, None, None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)

@@ -24,7 +24,8 @@ import scipy.sparse.linalg as spla
 
 from ..progress import report
 
-__all__ = ["NewtonResult", "newton", "norm2", "solve_linear", "PatternSolver", "SOLVER"]
+__all__ = ["NewtonResult", "newton", "norm2", "solve_linear", "factorised", "PatternSolver",
+           "SOLVER"]
 
 
 def norm2(r) -> float:
@@ -41,7 +42,7 @@ def solve_linear(A, b) -> np.ndarray:
     4x faster at 4e5 unknowns (measured; see benchmarks/bench_fe2d.py). Diagonal pivots are
     preferred (threshold 0.01, as :class:`PatternSolver`): partial pivoting's row exchanges
     undo the ordering on the coupled film + web systems (100x the time on a grooved cell)."""
-    return _factorised(A)(b)
+    return factorised(A)(b)
 
 
 #: SuperLU's panel size (columns factorised together; SuperLU's default is larger). On the
@@ -182,8 +183,9 @@ def _ordering(red) -> np.ndarray:
     return inv
 
 
-def _factorised(A) -> Callable[[np.ndarray], np.ndarray]:
-    """:func:`solve_linear`'s factorisation of A, as a solving function."""
+def factorised(A) -> Callable[[np.ndarray], np.ndarray]:
+    """:func:`solve_linear`'s factorisation of A, as a solving function (for several
+    right-hand sides: Picard's lift correction)."""
     return PatternSolver._factor(sp.csc_matrix(A), "MMD_AT_PLUS_A").solve
 
 

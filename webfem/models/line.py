@@ -67,6 +67,8 @@ class FoilBearing1D:
         #: the web's deflection at the domain's entry and exit ends
         px = self.mesh.p[0]
         self.iW_ends = self.iW[[int(np.argmin(px)), int(np.argmax(px))]]
+        #: the web's uniform lift, where its ends are unknowns (Picard corrects along it)
+        self.lift = ends.uniform_lift(self.basis.N, self.iW) if self.spans else None
         fixed = np.concatenate([end_dofs.all("u^1")]
                                + ([] if self.spans else [end_dofs.all("u^2")]))
         self.fixed = np.unique(fixed)
