@@ -33,7 +33,7 @@ from ..models.registry import MODELS, model_spec
 from .live import Progress, Ticker, progress_line   # shared by the subcommands, as the rest
 
 __all__ = ["HELP_FORMATTER", "DEFAULT_MODEL", "UNITS_HELP", "add_case_arguments",
-           "add_units_argument", "add_quiet_argument", "bundled_cases", "case_path",
+           "add_units_argument", "add_quiet_argument", "add_dask_argument", "bundled_cases", "case_path",
            "CaseArgument", "announce_case",
            "options_epilog", "case_from", "overrides", "positive_int", "speed_value",
            "model_options", "output_folder", "print_json", "Progress", "Ticker",
@@ -178,6 +178,14 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"{value} is out of range: must be >= 1")
     return value
+
+
+def add_dask_argument(p) -> None:
+    """``--dask``, the same for every command whose points may run on a Dask cluster (its
+    value checked in one place: :func:`webfem.sweeps.workers.check_dask`)."""
+    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
+                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
+                        "workers), an address joins an existing scheduler")
 
 
 def overrides(args) -> dict:

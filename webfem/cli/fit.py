@@ -8,8 +8,8 @@ import time
 from pathlib import Path
 
 from ..errors import InputError
-from .common import (HELP_FORMATTER, Progress, add_quiet_argument, output_folder, positive_int,
-                     print_json)
+from .common import (HELP_FORMATTER, Progress, add_dask_argument, add_quiet_argument,
+                     output_folder, positive_int, print_json)
 
 
 def add_parser(subparsers) -> None:
@@ -44,9 +44,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local worker processes (default 1: serial; > 1: the design points "
                         "in parallel, each a cold solve as in a serial run)")
-    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
-                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
-                        "workers), an address joins an existing scheduler")
+    add_dask_argument(p)
     p.add_argument("--recheck", action="store_true",
                    help="solve the hold-out points among the first --points again with the "
                         "current physics into STORE/holdout.csv (resumable); whenever that "

@@ -10,7 +10,8 @@ from pathlib import Path
 from ..sweepspec import load_sweep
 from ..errors import InputError
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments, announce_case,
-                     add_quiet_argument, add_units_argument, model_options, options_epilog,
+                     add_dask_argument, add_quiet_argument, add_units_argument, model_options,
+                     options_epilog,
                      output_folder, overrides, positive_int)
 
 
@@ -53,9 +54,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local worker processes (default 1: serial with continuation from "
                         "point to point; > 1: chunks of points in parallel)")
-    p.add_argument("--dask", metavar="local|tcp://HOST:PORT",
-                   help="run the points on Dask: 'local' starts a LocalCluster (with --workers "
-                        "workers), an address joins an existing scheduler")
+    add_dask_argument(p)
 
 
 def run(args) -> int:
