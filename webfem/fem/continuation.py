@@ -19,7 +19,9 @@ FoilBearing2D`, :class:`webfem.models.line.FoilBearing1D`).
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import hashlib
 
 import numpy as np
 
@@ -115,7 +117,58 @@ def groove_depth(problem, u0, prm, tol, max_iter, failed: SolveInfo):
     benchmarks/groove_scan.py). The first depth follows the film: a groove a few times
     deeper than the film it opens under changes the film at once (a 499 um groove's 1/64,
     7.8 um, under a 1.2 um film failed; a quarter of the film converged, each later step
-    in 4-9 Newton steps)."""
+    in 4-9 Newton steps).
+
+    The path is a pure function of the problem, ``u0``, ``prm``, ``tol`` and ``max_iter``:
+    it is kept (:data:`DEPTH_PATHS`) and a second call with the same ones returns it again
+    (copies; ``failed`` counted in as it would have been). Why: the driver's safe start,
+    the check of a resting answer, runs it from the same start as the direct start's
+    fallback did (envelope #171, a board's groove cell: the same 6 steps twice)."""
+    key = _depth_key(problem, u0, prm, tol, max_iter)
+    kept = DEPTH_PATHS.get(key)
+    if kept is None:
+        kept = _groove_depth_path(problem, u0, prm, tol, max_iter)
+        while len(DEPTH_PATHS) >= DEPTH_PATHS_KEPT:
+            DEPTH_PATHS.pop(next(iter(DEPTH_PATHS)))
+        DEPTH_PATHS[key] = (kept[0].copy(), copy.deepcopy(kept[1]))
+    u, info = kept
+    # the path computed after no failed attempt: ``failed`` joins it as it would have
+    return u.copy(), copy.deepcopy(info).after(failed)
+
+
+#: The depth continuations of the solve under way (:func:`groove_depth`), by their inputs;
+#: the model clears them when a solve starts and ends (:func:`forget_depth_paths`), so what
+#: a solve reports never depends on an earlier one.
+DEPTH_PATHS: dict = {}
+#: At most this many are kept (a cell's and its safe start's are one).
+DEPTH_PATHS_KEPT = 2
+
+
+def forget_depth_paths() -> None:
+    """Drop the kept depth continuations (:data:`DEPTH_PATHS`)."""
+    DEPTH_PATHS.clear()
+
+
+def _depth_key(problem, u0, prm, tol, max_iter) -> bytes:
+    """What a depth continuation depends on: the problem's nodes and configuration, the
+    start, the 1-D state its width continuation would start from, the parameters and
+    Newton's tolerance and limit."""
+    h = hashlib.blake2b(digest_size=32)
+    arrays = [problem.X, problem.Z, u0]
+    line = getattr(problem, "line_start", None)
+    if line is not None:
+        arrays += [line[0].X, line[1]]
+    for a in arrays:
+        a = np.ascontiguousarray(a, dtype=float)
+        h.update(repr(a.shape).encode())
+        h.update(a.tobytes())
+    h.update(repr((problem.config, line is not None, prm, float(tol), int(max_iter))).encode())
+    return h.digest()
+
+
+def _groove_depth_path(problem, u0, prm, tol, max_iter):
+    """:func:`groove_depth`'s work, after no failed attempt."""
+    failed = SolveInfo()
     g = problem.grooves
 
     def at(f):

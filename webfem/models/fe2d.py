@@ -279,11 +279,13 @@ class _Film(Discretisation):
         return one
 
     def forget_lines(self) -> None:
-        """Drop the kept 1-D starts (:meth:`_line`): a solve starts and ends without them,
+        """Drop the kept 1-D starts (:meth:`_line`) and depth continuations
+        (:func:`webfem.fem.continuation.groove_depth`): a solve starts and ends without them,
         so what one solve reports (its stages, the 1-D start's work) never depends on an
         earlier one."""
         self._lines.clear()
         self.cell = None
+        continuation.forget_depth_paths()
 
     def start(self, case: Case, prm, options: FE2DOptions, restart: State | None,
               informed: bool = True) -> Start:
