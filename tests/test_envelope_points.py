@@ -28,7 +28,6 @@ MATERIALS = {"newsprint": "base", "PET": "pet_idler", "foil": "foil_roller", "bo
 LIMIT = 60.0
 
 
-
 def point(material: str, R: float, T: float, B: float, L: float, U_r: float, U_w: float,
           pitch: float = 0.0, width: float = 0.0, depth: float = 0.0) -> webfem.Case:
     """A point as the benchmark builds it (``envelope_sample.case_of``)."""
