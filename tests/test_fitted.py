@@ -13,6 +13,7 @@ from webfem.models import fit_groups as fg
 from webfem.models import fitted
 from webfem.models.readout import READ_QUANTITIES, error_scale
 from webfem.studies import fit_campaign as fc
+from webfem.studies import time_limit
 
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
@@ -155,7 +156,7 @@ def _swallowing_spin(seconds):
 
     t0 = time.perf_counter()
     try:
-        with fc.time_limit(seconds) as limit:
+        with time_limit.time_limit(seconds) as limit:
             try:
                 while True:
                     pass
@@ -179,7 +180,7 @@ def test_time_limit_strikes_again_and_leaves_the_thread_clean(in_thread):
 
     def spin():
         out.append(_swallowing_spin(0.1))
-        with fc.time_limit(0.1):       # ends in time: nothing raised later
+        with time_limit.time_limit(0.1):       # ends in time: nothing raised later
             pass
         time.sleep(0.3)
         out.append("clean")
@@ -192,7 +193,7 @@ def test_time_limit_strikes_again_and_leaves_the_thread_clean(in_thread):
         spin()
     (expired, message, seconds), clean = out
     assert expired and message == "no answer within 0.1 s" and clean == "clean"
-    assert fc._AGAIN_S + 0.1 <= seconds < fc._AGAIN_S + 2.0
+    assert time_limit._AGAIN_S + 0.1 <= seconds < time_limit._AGAIN_S + 2.0
 
 
 def test_campaign_options_refused_before_anything_runs(tmp_path, capsys):

@@ -361,21 +361,24 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                 return NewtonResult(u, True, it - 1, norm, history,
                                     _at_floor(norm, tol, floor))
             alpha *= 0.5
-            if alpha < min_damping and not tiny and tol >= STRICT_BELOW and \
-                    np.max(np.abs(du)) <= FLOOR_STEP * (1.0 + np.max(np.abs(u[free]))):
+            small = alpha < min_damping and not tiny and tol >= STRICT_BELOW and \
+                np.max(np.abs(du)) <= FLOOR_STEP * (1.0 + np.max(np.abs(u[free])))
+            if (small or noise) and alpha < min_damping and not tiny and tol >= STRICT_BELOW:
                 # no step along the correction lowers a residual at its rounding floor: the
-                # correction is rounding noise amplified by J^-1, below FLOOR_STEP
+                # correction is rounding noise amplified by J^-1, below FLOOR_STEP or (noise)
+                # as large as that of a random residual of its size
                 floor = rounding_floor(Jm, u, free)
                 if norm <= FLOOR_FACTOR * floor:
-                    return NewtonResult(u, True, it - 1, norm, history,
-                                        _at_floor(norm, tol, floor) + _noise_step(du, u, free))
-            if alpha < min_damping and noise and not tiny and tol >= STRICT_BELOW:
-                floor = rounding_floor(Jm, u, free)
-                if norm <= FLOOR_FACTOR * floor and np.max(np.abs(du)) <= \
-                        NOISE_FACTOR * noise_correction(last, norm, len(free)):
-                    return NewtonResult(u, True, it - 1, norm, history,
-                                        _at_floor(norm, tol, floor) + _noise_step(du, u, free)
-                                        + " (as large as a random residual's of that size)")
+                    if small:
+                        return NewtonResult(u, True, it - 1, norm, history,
+                                            _at_floor(norm, tol, floor)
+                                            + _noise_step(du, u, free))
+                    if np.max(np.abs(du)) <= NOISE_FACTOR * noise_correction(last, norm,
+                                                                             len(free)):
+                        return NewtonResult(u, True, it - 1, norm, history,
+                                            _at_floor(norm, tol, floor)
+                                            + _noise_step(du, u, free)
+                                            + " (as large as a random residual's of that size)")
             if alpha < min_damping:
                 return NewtonResult(u, False, it, norm, history,
                                     f"the residual stalls at {norm:.3g}, above the tolerance "

@@ -48,7 +48,8 @@ from .options import FE1DOptions
 from .outcome import Facts
 
 __all__ = ["FoilParameters", "FoilBearing1D", "ProblemCache", "LINE", "solve", "solve_case",
-           "NAME", "spans", "short_span_warning", "held_ends_warning", "HELD_ENDS_SHARE"]
+           "NAME", "spans", "ends_warnings", "short_span_warning", "held_ends_warning",
+           "HELD_ENDS_SHARE"]
 
 NAME = "fe1d"
 #: The defaults of :class:`~webfem.models.options.FE1DOptions`, by name (read-only view).
@@ -192,8 +193,7 @@ class _Line(Discretisation):
     def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
         warnings = ((f"lambda = {case.lam:.3g}: a narrow web leaks air at its edges, which "
                      "the 1-D (infinitely wide) model ignores; its gap is too large",)
-                    if case.lam < 7.0 else ()) + held_ends_warning(case, prm, problem.X) \
-            + short_span_warning(case, problem.X)
+                    if case.lam < 7.0 else ()) + ends_warnings(case, prm, problem.X)
         return Facts(n_cells=len(problem.X) - 1, warnings=warnings)
 
 
@@ -213,6 +213,13 @@ def spans(case: Case, X) -> bool:
     and exit zones (else :func:`short_span_warning` says it is held at the zones' ends)."""
     span = case.span_used
     return span is not None and span / case.x_scale > ends.shortest_span(X, case.beta)
+
+
+def ends_warnings(case: Case, prm: FoilParameters, X) -> tuple[str, ...]:
+    """What a result on the (scaled) nodes ``X`` says about where its web is held: a span
+    that does not reach past the zones (:func:`short_span_warning`) and a stiff web held at
+    the zones' ends (:func:`held_ends_warning`); both models' facts."""
+    return held_ends_warning(case, prm, X) + short_span_warning(case, X)
 
 
 def short_span_warning(case: Case, X) -> tuple[str, ...]:

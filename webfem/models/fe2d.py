@@ -95,7 +95,6 @@ def problem_for(case: Case, options: FE2DOptions, X: np.ndarray) -> FoilBearing2
                          spans=fe1d.spans(case, X))
 
 
-
 def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
     """The nodes across a smooth roller's film (scaled): graded towards the web's edge."""
     return width_nodes(case.lam, options.level, half=options.symmetry, fine=options.width_fine)
@@ -563,8 +562,7 @@ class _Film(Discretisation):
     def facts(self, case: Case, problem, u, prm, options, readout) -> Facts:
         warnings = ((f"beta = {case.beta:.3g} < 6: the wrap is shorter than the entry and "
                      "exit zones; no uniform central gap exists",) if case.beta < 6.0 else ()) \
-            + fe1d.held_ends_warning(case, prm, problem.X) \
-            + fe1d.short_span_warning(case, problem.X)
+            + fe1d.ends_warnings(case, prm, problem.X)
         common = dict(n_cells=int(problem.mesh.nelements), width_cells=len(problem.Z) - 1,
                       land_fraction=case.land_fraction, warnings=warnings)
         if problem.grooves is None:
