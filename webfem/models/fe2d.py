@@ -4,8 +4,10 @@ The discrete problem is :class:`webfem.fem.film_problem.FoilBearing2D` (the film
 tensor product of the web's nodes in X and nodes across the width, Q2 or Q1, with the web's
 Hermite beam/membrane; its Newton strategy and the width and depth continuations of
 :mod:`webfem.fem.continuation`). This module is the model on the shared driver: the 1-D
-(infinitely wide) solution gives the start and the X mesh, already refined where the film is
-thin; :func:`problem_for` builds the problem from the case and the options.
+(infinitely wide) solution gives the start and the X mesh (on a smooth roller the 2-D solve
+on a coarse mesh first refines it where the 2-D film is thin and the mesh misses the 1-D
+solution: :meth:`_Film._coarse_first`); :func:`problem_for` builds the problem from the case
+and the options.
 
 Examples
 --------
@@ -33,7 +35,7 @@ from ..progress import stage
 from .admissible import admissibility
 from .driver import REST_CHECKED, Discretisation, Start, solve_fe
 from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes, kept_nodes
-from .refine import adapted_nodes
+from .refine import adapted_nodes, interpolated_nodes
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -104,9 +106,27 @@ def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
 #: first, and the meshes its gap and the next one's ask for.
 COARSE_ROUNDS = 3
 
-#: How many cold 1-D starts :class:`_Film` keeps (a case's direct start and its finer-mesh
-#: remedy's).
-LINES_KEPT = 2
+#: A cold start's coarse mesh (the 1-D start's nodes, every other one) has its cells bisected
+#: where what it misses of the 1-D solution, the web's Hermite interpolant relative to the
+#: gap plus the film pressure's interpolant, times the cell's length
+#: (:func:`webfem.models.refine.interpolation_weights`), exceeds this times ``error_tol``
+#: (:meth:`_Film._coarse_first`). Why: the base case at 20 m/s with the web held through
+#: spans stated 1.3e-3 (h_min) on its 10,105 unknowns, and its estimate bisected every cell
+#: along x (20,185). That change came from the cells 0.6-3 units past the outlet edge, where
+#: the film pressure falls from its exit peak into a sub-ambient dip (-4 T/R) and recovers:
+#: coarsening only the cells 1.6-3 units past the edge changed h_min by 1.1e-3 (only those
+#: at 0.6-1 and 1-1.6 units: 2.5e-4 and 4.7e-4), only the 54 from the inlet edge to 3 units
+#: before the outlet by 1e-6. The spans only moved the minimum 0.04 units downstream, off
+#: a node of the coarser mesh, where those parts had cancelled (held at the zones' ends:
+#: 6.8e-4). Those cells hold the five largest weights (0.65-2.5 units past the edge, 83 % of
+#: their sum); bisected before the coarse solve, the estimate states 1.2e-4 on 10,777
+#: unknowns, without a bisection round, and the Richardson error of h_min is 8e-6.
+LINE_MISFIT = 2.0
+
+#: How many cold 1-D starts :class:`_Film` keeps (a case's direct start, on the 1-D starting
+#: mesh where the mesh is decided up front, the refined one of its safe start, and its
+#: finer-mesh remedy's).
+LINES_KEPT = 3
 
 
 def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what):
@@ -248,6 +268,14 @@ def _coarse_full_width(case: Case, prm, options: FE2DOptions, problem, u0):
     return coarse.transfer(uc, prm, problem), info
 
 
+def _decides_up_front(case: Case, options: FE2DOptions) -> bool:
+    """Whether a cold start decides its mesh by a 2-D solve on a coarse mesh first
+    (:meth:`_Film._coarse_first`): Newton with the mesh error estimate on, on a smooth
+    roller and webfem's graded mesh."""
+    return (options.method == "newton" and options.estimate and options.mesh is None
+            and options.nodes is None and not case.grooved)
+
+
 class _Film(Discretisation):
     """The 2-D model's part of the shared driver: the 1-D (infinitely wide) solution gives
     the start and the X mesh, already refined where the film is thin."""
@@ -301,14 +329,21 @@ class _Film(Discretisation):
                 return start
         smooth = case.updated({"roller.groove_width": 0.0}) if case.grooved else case
         line = restart.line if restart is not None and restart.model == NAME else None
-        one = self._line(smooth, FE2DOptions.line_options(options), line)
+        line_options = FE2DOptions.line_options(options)
+        if informed and _decides_up_front(case, options):
+            # the 1-D solution on its starting mesh: the 2-D coarse solve's gap decides where
+            # the film is thin (:meth:`_coarse_first`), not the 1-D's, which is thicker
+            one = self._line(smooth, line_options.replace(adapt=0), line)
+            spent = SolveInfo(converged=True, iterations=one["iterations"])
+            first = self._coarse_first(case, prm, options, one.state("problem"),
+                                       one.state("state"))
+            if first is not None:
+                fine, u0, coarse_info, kept = first
+                return Start(fine, u0, info=coarse_info.after(spent), line=one.restart,
+                             kept={"line_result": one, **kept})
+        one = self._line(smooth, line_options, line)
         p1, u1 = one.state("problem"), one.state("state")
         spent = SolveInfo(converged=True, iterations=one["iterations"])
-        first = self._coarse_first(case, prm, options, p1, u1) if informed else None
-        if first is not None:
-            fine, u0, coarse_info, kept = first
-            return Start(fine, u0, info=coarse_info.after(spent), line=one.restart,
-                         kept={"line_result": one, **kept})
         problem = problem_for(case, options, p1.X)
         problem.line_start = (p1, u1)
         # on a smooth roller the 1-D solution is close enough for the coupled Newton; a
@@ -364,16 +399,25 @@ class _Film(Discretisation):
         mesh with every cell bisected (it meets the rule for the coarse gap; the driver's
         rounds still check it against its own), started from the coarse state carried
         over; its coarser mesh is the coarse one, whose solved state the estimate reuses
-        (``kept["coarse"]``). Returns ``(problem, u0, info, kept)`` or None (the direct
-        start on the 1-D mesh: a coarse solve failed or ended inadmissible)."""
-        if (options.method != "newton" or not options.estimate or options.mesh is not None
-                or options.nodes is not None or case.grooved):
+        (``kept["coarse"]``). Before the coarse solve, the coarse cells where the mesh misses
+        the 1-D solution (``p1``, ``u1``: on the 1-D starting mesh, not refined, the 2-D
+        gap being thinner than the 1-D's decides that) are bisected (:data:`LINE_MISFIT`):
+        the mesh the estimate would otherwise have bisected after the fine solve, decided
+        up front. Returns ``(problem, u0, info, kept)`` or None (the direct start on the 1-D
+        mesh: a coarse solve failed or ended inadmissible)."""
+        if not _decides_up_front(case, options):
             return None
         e = 0.5 * prm.beta
         Z = problem_for_width(case, options)
         Xc, Zc = coarser_nodes(p1.X, (-e, e)), coarser_nodes(Z)
         if Xc is None or Zc is None:
             return None
+        if options.adapt:
+            # the mesh the 1-D solution asks for, decided before any 2-D solve
+            Xc = interpolated_nodes(Xc, lambda x: p1.gap(u1, prm, x),
+                                    lambda x: p1.pressure(u1, x), prm,
+                                    LINE_MISFIT * options.error_tol, 2.0 * options.min_cell,
+                                    options.order)
         coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=fe1d.spans(case, Xc))
         coarse.line_start, coarse.direct = (p1, u1), True
         settled = _coarse_rounds(case, prm, options, coarse,

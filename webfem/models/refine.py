@@ -1,5 +1,7 @@
 """Where the film is thin: the adaptive refinement rule, the wrap's quadrature samples and the
-search for the smallest gap (shared by the 1-D and 2-D models)."""
+search for the smallest gap (shared by the 1-D and 2-D models); and where a mesh misses a
+solution in hand (:func:`interpolation_weights`: the 2-D mesh decided from the 1-D
+solution)."""
 
 from __future__ import annotations
 
@@ -8,7 +10,8 @@ from numpy.polynomial.legendre import leggauss
 
 from ..fem import forms
 
-__all__ = ["adapted_nodes", "minimum", "wrap_samples"]
+__all__ = ["adapted_nodes", "minimum", "wrap_samples", "interpolation_weights",
+           "interpolated_nodes"]
 
 
 def minimum(problem, u, prm) -> tuple[float, float]:
@@ -71,3 +74,79 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     if not mark.any() or X.size + mark.sum() > max_cells:
         return None
     return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
+
+
+def _hermite_misfit(X, W, t):
+    """|cubic Hermite interpolant - W| at the fractions ``t`` of each cell of ``X``, from the
+    values and slopes of ``W`` at the nodes (differences of second order over steps 1e-3 of
+    the shorter neighbouring cell long, one-sided at the ends: the web's values carry
+    relative noise of about 1e-8, far below what steps that long see). Returns the misfits
+    (cell, fraction), the points and W there."""
+    dx = np.diff(X)
+    n = X.size
+    d = 1e-3 * np.minimum(np.concatenate([dx[:1], dx]), np.concatenate([dx, dx[-1:]]))
+    # central differences inside; at the ends W(x), W(x +- d), W(x +- 2d), inwards
+    s = np.ones(n)
+    s[-1] = -1.0
+    v = W(np.concatenate([X, np.maximum(X - d, X[0]), np.minimum(X + d, X[-1]),
+                          X[[0, -1]] + 2.0 * s[[0, -1]] * d[[0, -1]]]))
+    Wv, Wm, Wp, W2 = v[:n], v[n:2 * n], v[2 * n:3 * n], v[3 * n:]
+    Ws = (Wp - Wm) / (2.0 * d)
+    inward = np.array([Wp[0], Wm[-1]])
+    Ws[[0, -1]] = s[[0, -1]] * (-3.0 * Wv[[0, -1]] + 4.0 * inward - W2) / (2.0 * d[[0, -1]])
+    h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
+    h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
+    L = dx[:, None]
+    Wi = (h00 * Wv[:-1, None] + h10 * L * Ws[:-1, None] + h01 * Wv[1:, None]
+          + h11 * L * Ws[1:, None])
+    pts = X[:-1, None] + L * t
+    Wp = W(pts.ravel()).reshape(pts.shape)
+    return np.abs(Wi - Wp), pts, Wp
+
+
+def _lagrange_misfit(X, P, t, order: int):
+    """|Lagrange interpolant of ``order`` (1 or 2: the ends and, for 2, the midpoint of
+    each cell) - P| at the fractions ``t`` of each cell of ``X``."""
+    pts = X[:-1, None] + np.diff(X)[:, None] * t
+    a, b = P(X[:-1])[:, None], P(X[1:])[:, None]
+    if order == 1:
+        Pi = (1 - t) * a + t * b
+    else:
+        m = P(0.5 * (X[1:] + X[:-1]))[:, None]
+        Pi = 2 * (t - 0.5) * (t - 1) * a - 4 * t * (t - 1) * m + 2 * t * (t - 0.5) * b
+    return np.abs(Pi - P(pts.ravel()).reshape(pts.shape))
+
+
+def interpolation_weights(X, gap, pressure, prm, order: int = 2, n: int = 4) -> np.ndarray:
+    """Per cell of the nodes ``X``: its length times the largest misfit, at ``n`` points
+    inside it, of the interpolants a mesh on ``X`` holds of a solved gap and film pressure
+    (``gap(X)``, ``pressure(X)``: a solution on other nodes, the 1-D model's for the 2-D
+    mesh): the web's cubic Hermite interpolant relative to the larger of the gap and the
+    roughness S (:func:`~webfem.models.readout.error_scale`), plus the pressure's Lagrange
+    interpolant of ``order`` (scaled: the wrap pressure is 1). The roller's departure
+    outside the wrap is exact in every model and is left out of the web. The weighting is
+    that of the error estimate's local rounds (:func:`webfem.models.mesh_error.
+    _local_x_nodes`), with the solution's change between two meshes replaced by what one
+    mesh misses of a solution in hand."""
+    X = np.asarray(X, float)
+    t = (np.arange(1, n + 1) / (n + 1))[None, :]
+    web = lambda x: gap(x) - forms.departure(x, prm.beta)
+    dW, pts, W = _hermite_misfit(X, web, t)
+    H = W + forms.departure(pts, prm.beta)
+    dH = dW / np.maximum(np.abs(H), prm.S)
+    dP = _lagrange_misfit(X, pressure, t, order)
+    return np.diff(X) * np.max(dH + dP, axis=1)
+
+
+def interpolated_nodes(X, gap, pressure, prm, limit: float, min_cell: float,
+                       order: int = 2, rounds: int = 2, max_cells: int = 4000) -> np.ndarray:
+    """``X`` with the cells bisected, up to ``rounds`` times, whose
+    :func:`interpolation_weights` exceed ``limit``, down to cells of ``2 min_cell``."""
+    X = np.asarray(X, float)
+    for _ in range(rounds):
+        w = interpolation_weights(X, gap, pressure, prm, order)
+        mark = (w > limit) & (np.diff(X) > 2.0 * min_cell)
+        if not mark.any() or X.size + mark.sum() > max_cells:
+            break
+        X = np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
+    return X
