@@ -351,13 +351,17 @@ class FoilBearing2D:
         out = self.newton(u, prm, tol, 10, rows=rows, rtol=rtol, chord=False)
         return out.u if out.converged else u
 
-    def plain_newton(self, u0, prm, tol, max_iter, direct_budget: int = 0):
+    def plain_newton(self, u0, prm, tol, max_iter, direct_budget: int = 0,
+                     rtol: float = 0.0):
         """Newton on film + web from ``u0`` with the film pressure made consistent with its
         web first (a film-only solve: it rescues starts whose pressure is far from the
         web's). ``direct_budget > 0``: first try that many coupled steps straight from
         ``u0`` (a state carried over from a solved mesh, or the 1-D solution, needs no
-        film-only solve). Returns ``(u, SolveInfo)``."""
-        first = self.newton(u0, prm, tol, direct_budget) if direct_budget else None
+        film-only solve), converged at ``rtol`` times their first residual already (where
+        above ``tol``; the film-only path always solves to ``tol``). Returns ``(u,
+        SolveInfo)``."""
+        first = self.newton(u0, prm, tol, direct_budget, rtol=rtol) if direct_budget \
+            else None
         if first is not None and first.converged:
             return first.u, SolveInfo.of(first)
         out = self.newton(self.consistent_pressure(u0, prm, rtol=START_RTOL), prm, tol,

@@ -106,6 +106,16 @@ def problem_for_width(case: Case, options: FE2DOptions) -> np.ndarray:
 #: first, and the meshes its gap and the next one's ask for.
 COARSE_ROUNDS = 3
 
+#: A cold start's first coarse mesh (:func:`_coarse_rounds` with ``planning``) is solved to
+#: this times its first residual (Newton's direct steps): enough to read where its gap asks
+#: for finer cells; only where the rule keeps that mesh is it solved on to the tolerance.
+#: Why: on the base case at 20 m/s it (2,199 unknowns) took 2.2e3 -> 5.1e-4 in three steps
+#: and 2.4e-8 and 7.7e-12 in two more (a factorisation and a chord step, 5.5 ms), then was
+#: refined, its state only the next mesh's start. Not on the later meshes, which the rule
+#: mostly keeps: solved on from a looser state, Newton starts without the factorisation
+#: its chord steps would reuse (the second mesh's 1.2e-7 took a factorisation to 4e-12).
+PLANNING_RTOL = 1e-6
+
 #: A cold start's coarse mesh (the 1-D start's nodes, every other one) has its cells bisected
 #: where what it misses of the 1-D solution, the web's Hermite interpolant relative to the
 #: gap plus the film pressure's interpolant, times the cell's length
@@ -120,7 +130,7 @@ COARSE_ROUNDS = 3
 #: a node of the coarser mesh, where those parts had cancelled (held at the zones' ends:
 #: 6.8e-4). Those cells hold the five largest weights (0.65-2.5 units past the edge, 83 % of
 #: their sum); bisected before the coarse solve, the estimate states 1.2e-4 on 10,777
-#: unknowns, without a bisection round, and the Richardson error of h_min is 8e-6.
+#: unknowns, without a bisection round (its Richardson error: 1.2e-5).
 LINE_MISFIT = 2.0
 
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start, on the 1-D starting
@@ -129,23 +139,37 @@ LINE_MISFIT = 2.0
 LINES_KEPT = 3
 
 
-def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what):
+def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what,
+                   planning: bool = False):
     """The coarse mesh solved from ``u0`` and bisected where its own 2-D gap asks for cells
     half as fine as the thin-film rule's (:func:`continued.planned_nodes` with
     ``coarser=2``), then solved again, until the rule asks for nothing more
-    (:data:`COARSE_ROUNDS` at most). ``what`` names the stage. Returns ``(coarse, state,
-    info)``, or None where a solve fails or ends inadmissible, or the rounds run out."""
+    (:data:`COARSE_ROUNDS` at most). ``what`` names the stage. ``planning``: the first
+    mesh is likely to be refined (a cold start's, from the 1-D solution, whose gap is
+    thicker than the 2-D film's): it is solved to :data:`PLANNING_RTOL` only, and on to the
+    tolerance where the rule keeps it. Returns ``(coarse, state, info)``, or None where a
+    solve fails or ends inadmissible, or the rounds run out."""
     info = None
-    for _ in range(COARSE_ROUNDS):
+    for rounds in range(COARSE_ROUNDS):
         with stage(f"{NAME} newton on {what}, {coarse.n_dofs:,} unknowns"):
             uc, step = coarse.plain_newton(u0, prm, options.tol, options.max_iter,
-                                           DIRECT_STEPS)
+                                           DIRECT_STEPS,
+                                           rtol=PLANNING_RTOL if planning and rounds == 0
+                                           else 0.0)
         info = step if info is None else step.after(info)
         if not info.converged or admissibility(case, coarse, uc, prm):
             return None
         X = continued.planned_nodes(coarse.X, prm, options,
                                     lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
         if X.size == coarse.X.size:
+            if step.residual > options.tol:
+                # the mesh stays: its state is the estimate's, solved to the tolerance
+                with stage(f"{NAME} newton on {what}, {coarse.n_dofs:,} unknowns"):
+                    uc, step = coarse.plain_newton(uc, prm, options.tol, options.max_iter,
+                                                   DIRECT_STEPS)
+                info = step.after(info)
+                if not info.converged or admissibility(case, coarse, uc, prm):
+                    return None
             return coarse, uc, info
         finer = coarse.variant(X=X)
         u0, coarse = coarse.transfer(uc, prm, finer), finer
@@ -421,7 +445,8 @@ class _Film(Discretisation):
         coarse = FoilBearing2D(Xc, Zc, order=options.order, spans=fe1d.spans(case, Xc))
         coarse.line_start, coarse.direct = (p1, u1), True
         settled = _coarse_rounds(case, prm, options, coarse,
-                                 coarse.start_from_line(p1, u1, prm), "a coarse mesh first")
+                                 coarse.start_from_line(p1, u1, prm), "a coarse mesh first",
+                                 planning=True)
         if settled is None:
             return None
         coarse, uc, info = settled
