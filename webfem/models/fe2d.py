@@ -342,7 +342,9 @@ class _Film(Discretisation):
               informed: bool = True) -> Start:
         """The start of a solve: continued from ``restart`` (:meth:`_continued`), else cold
         from the 1-D solution. With ``informed`` (not the safe start): on a smooth roller
-        the mesh decided by a 2-D solve on the coarser mesh first (:meth:`_coarse_first`);
+        the mesh decided by a 2-D solve on the coarser mesh first (:meth:`_coarse_first`,
+        from the 1-D solution on its starting mesh, not refined where the 1-D film is
+        thin: the 2-D film is thinner, and the coarse solve's gap refines the mesh);
         on a grooved one's strip or full width, the web of the periodic cell's answer when
         the solve under way has one (:attr:`cell`: 10 -> 4 coupled Newton steps on a 1.27 mm
         pitch's full width, the same answer to Newton's tolerance)."""
