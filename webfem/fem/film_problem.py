@@ -124,7 +124,7 @@ class FoilBearing2D:
         # moved mesh: a continued point's) shared
         self.fbasis = film_basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                                  intorder=4 if order == 2 else 3)
-        self.T = quadrature_matrices(self.fbasis, self.wbasis)
+        self._T = None
         self.nP, self.nW = self.fbasis.N, self.wbasis.N
         fixed_p = self.fbasis.get_dofs({"ends", "edges"} if self.web_edges
                                        else {"ends"}).all()
@@ -173,6 +173,16 @@ class FoilBearing2D:
                               **dataclasses.asdict(cfg) | {"grooves": cfg.grooves})
         other.direct, other.line_start = True, self.line_start
         return other
+
+    @property
+    def T(self) -> dict:
+        """The web's basis at the film's quadrature points (:func:`webfem.fem.transfer.
+        quadrature_matrices`), built on first use: a problem made only to carry a state to
+        another mesh or to read its gap (a continued point's previous mesh moved, where this
+        point's mesh is another: 2 of the 4 problems of such a point) never needs it."""
+        if self._T is None:
+            self._T = quadrature_matrices(self.fbasis, self.wbasis)
+        return self._T
 
     @property
     def n_dofs(self) -> int:
