@@ -250,16 +250,17 @@ def test_line_coefficients_kept_for_the_last_state_only():
 
 
 def test_a_released_problem_assembles_and_solves_as_before(grooved):
-    """:meth:`FoilBearing2D.release` drops the assembly, the factorisation plans and the web's
-    mass factorisation (a mesh kept for its nodes while a finer one is solved); used again,
-    the problem builds them anew: the same residual, Jacobian, solve and width average, to
-    the bit."""
+    """:meth:`FoilBearing2D.release` drops the assembly and the factorisation plans (a mesh
+    kept for its nodes while a finer one is solved) and keeps the web's mass factorisation
+    (the web's size; the result reads the released answer's pressure); used again, the
+    problem builds them anew: the same residual, Jacobian, solve and width average, to the
+    bit."""
     p, u = grooved
     prm = FoilParameters(**{**PRM.__dict__, "land": 0.7})
     J0, R0, A0 = p.jacobian(u, prm), p.residual(u, prm), p.width_average(u)
     x0 = p.solver.solve(J0, p.free, R0[p.free])
     p.release()
-    assert p._system is None and p._solver is None and p._mass is None
+    assert p._system is None and p._solver is None and p._mass is not None
     J1, R1 = p.jacobian(u, prm), p.residual(u, prm)
     assert np.array_equal(R0, R1) and (J0 != J1).nnz == 0
     assert np.array_equal(x0, p.solver.solve(J1, p.free, R1[p.free]))

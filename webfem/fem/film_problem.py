@@ -124,7 +124,7 @@ class FoilBearing2D:
         # moved mesh: a continued point's) shared
         self.fbasis = film_basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                                  intorder=4 if order == 2 else 3)
-        self.T = quadrature_matrices(self.fbasis, self.wbasis)
+        self._T = None
         self.nP, self.nW = self.fbasis.N, self.wbasis.N
         fixed_p = self.fbasis.get_dofs({"ends", "edges"} if self.web_edges
                                        else {"ends"}).all()
@@ -175,15 +175,29 @@ class FoilBearing2D:
         return other
 
     @property
+    def T(self) -> dict:
+        """The web's basis at the film's quadrature points (:func:`webfem.fem.transfer.
+        quadrature_matrices`), built on first use: a problem made only to carry a state to
+        another mesh or to read its gap (a continued point's previous mesh moved, where this
+        point's mesh is another: 2 of the 4 problems of such a point) never needs it."""
+        if self._T is None:
+            self._T = quadrature_matrices(self.fbasis, self.wbasis)
+        return self._T
+
+    @property
     def n_dofs(self) -> int:
         return self.nP + self.nW
 
     def release(self) -> None:
-        """Drop what this problem builds on first use (its assembly, the factorisation plans
-        it holds, the web's mass factorisation): built again if it is solved again. Why: a
-        problem is kept for its nodes and state while the finer mesh carried over from it is
-        solved, and its assembly held ~0.5 GB at 1.2e5 unknowns beside the finer one's."""
-        self._system, self._solver, self._mass, self._average = None, None, None, None
+        """Drop what this problem builds on first use for its solves (its assembly, the
+        factorisation plans it holds): built again if it is solved again. Why: a problem is
+        kept for its nodes and state while the finer mesh carried over from it is solved,
+        and its assembly held ~0.5 GB at 1.2e5 unknowns beside the finer one's. The web's
+        mass factorisation and the last width average (of the web's size and of the film's
+        DOFs) are kept: the result reads the film pressure of the released answer again,
+        and building them again was 1 of the 3 mass factorisations of a continued sweep
+        point (23 of 76 on the 24-point speed sweep)."""
+        self._system, self._solver = None, None
 
     def recipe(self) -> tuple:
         """``(FoilBearing2D, args, kwargs)`` that build this problem again: what a result
