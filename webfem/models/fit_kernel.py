@@ -142,35 +142,36 @@ class Kernel:
 class Stack:
     """Several Matern-5/2 :class:`Kernel` s (each its own centres and length scales)
     evaluated in one pass: one matrix product gives every kernel's squared distances
-    (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x and x^2 side by side), one sweep of the radial
-    function covers all the centres, then each kernel's weights on its own columns; the
-    outputs side by side, in the kernels' order. The same values as calling each kernel to
-    rounding, with the per-call costs paid once."""
+    (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x^2, x and 1 side by side), one sweep of the
+    radial function covers all the centres, then each kernel's weights on its own columns;
+    the outputs side by side, in the kernels' order. The same values as calling each kernel
+    to rounding, with the per-call costs paid once.
 
-    def __init__(self, kernels, dtype=np.float64):
+    ``radial``: the type the radial function (sqrt, exp and its polynomial, the bulk of the
+    work) is evaluated in; the distances and the weight product stay in float64, so each
+    point's answer does not depend on the others in the batch."""
+
+    def __init__(self, kernels, radial=np.float64):
         kernels = list(kernels)
         if any(k.kind != "matern52" for k in kernels):
             raise ValueError("Stack evaluates Matern-5/2 kernels only")
-        self.dtype = np.dtype(dtype)
-        m = kernels[0].centres.shape[1]
-        q, c, bb, self._blocks = [], [], [], []
+        self.radial = np.dtype(radial)
+        cols, self._blocks = [], []
         start = out = 0
         for k in kernels:
             inv2 = 1.0 / k.scales ** 2
-            q.append(np.repeat(inv2[:, None], len(k.centres), axis=1))
-            c.append(-2.0 * (k.centres * inv2).T)
-            bb.append(np.sum(k.centres ** 2 * inv2, axis=1))
-            b2, _, w, t0, t1 = k._prepared
-            n_out = w.shape[1]
+            cols.append(np.vstack([np.repeat(inv2[:, None], len(k.centres), axis=1),
+                                   -2.0 * (k.centres * inv2).T,
+                                   np.sum(k.centres ** 2 * inv2, axis=1)[None, :]]))
+            _, _, w, t0, t1 = k._prepared
             self._blocks.append((slice(start, start + len(k.centres)),
-                                 slice(out, out + n_out), w.astype(self.dtype), t0, t1))
+                                 slice(out, out + w.shape[1]),
+                                 np.ascontiguousarray(w / 3.0), t0, t1))
             start += len(k.centres)
-            out += n_out
-        # the rows for x^2 then x: one product gives the squared distances (times 5, so the
-        # radial function takes them as they come)
-        self._A = np.ascontiguousarray(5.0 * np.vstack([np.hstack(q), np.hstack(c)]))
-        self._bb = 5.0 * np.concatenate(bb)
-        self.n_inputs, self.n_outputs = m, out
+            out += w.shape[1]
+        # times 5: the product is (sqrt5 r)^2, which the radial function takes as it comes
+        self._A = np.ascontiguousarray(5.0 * np.hstack(cols))
+        self.n_outputs = out
 
     def __call__(self, x: np.ndarray, chunk: int = 256) -> np.ndarray:
         x = np.atleast_2d(np.asarray(x, float))
@@ -181,26 +182,26 @@ class Stack:
 
     def _run(self, x: np.ndarray, chunk: int) -> np.ndarray:
         out = np.empty((len(x), self.n_outputs))
-        xx = np.hstack([x * x, x])
-        third = self.dtype.type(1.0 / 3.0)
+        xx = np.hstack([x * x, x, np.ones((len(x), 1))])
+        f32 = self.radial != np.float64
         for i in range(0, len(x), chunk):
             r = xx[i:i + chunk] @ self._A
-            r += self._bb
-            np.maximum(r, 0.0, out=r)
-            if self.dtype != r.dtype:
-                r = r.astype(self.dtype)
+            np.maximum(r, 0.0, out=r)        # rounding may leave a coincident point below 0
+            if f32:
+                r = r.astype(self.radial)
             np.sqrt(r, out=r)
             e = np.negative(r)
             np.exp(e, out=e)
-            phi = r * third                              # (1 + r (1 + r/3)) e^-r
-            phi += 1.0
+            phi = r + 3.0                    # 3 (1 + r + r^2/3) e^-r; the 1/3 is in the weights
             phi *= r
-            phi += 1.0
+            phi += 3.0
             phi *= e
+            if f32:
+                phi = phi.astype(np.float64)
             xi = x[i:i + chunk]
             for cols, outs, w, t0, t1 in self._blocks:
                 o = out[i:i + chunk, outs]
-                o[...] = phi[:, cols] @ w
+                np.matmul(phi[:, cols], w, out=o)
                 o += t0
                 o += xi @ t1
         return out

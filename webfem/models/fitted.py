@@ -79,12 +79,19 @@ def coefficients(path: str | None = None) -> dict:
             "scalar_names": names}
 
 
+#: The type the kernels' radial function is evaluated in (:class:`Stack`): float32 is
+#: 1.2-1.3 times as fast and moves the fitted variables by < 1e-5, a ten-thousandth of the
+#: fit's smallest median error; the stated errors are measured through it.
+RADIAL = np.float32
+
+
 def evaluator(kernel, scalars=()) -> Stack | None:
-    """The profile's kernel and the scalars' evaluated in one pass (:class:`Stack`), or None
-    where one of them is not a Matern-5/2 :class:`Kernel` (comparisons of other methods)."""
+    """The profile's kernel and the scalars' evaluated in one pass (:class:`Stack`, radial
+    function in :data:`RADIAL`), or None where one of them is not a Matern-5/2
+    :class:`Kernel` (comparisons of other methods)."""
     kernels = [kernel, *scalars]
     if all(isinstance(k, Kernel) and k.kind == "matern52" for k in kernels):
-        return Stack(kernels)
+        return Stack(kernels, radial=RADIAL)
     return None
 
 
