@@ -4,7 +4,10 @@ anisotropic (ARD) Matern-5/2 kernel over a linear trend, many outputs sharing on
 y(x) = [1, x] b + sum_i k(x, x_i) a_i with k(x, x') = (1 + r sqrt5 + 5 r^2 / 3)
 exp(-r sqrt5), r = |(x - x') / l|; x are the fit's coordinates mapped to the unit box.
 The coefficients (``centres``, ``scales`` l, ``trend`` b, ``weights`` a, the outputs' mean
-and spread) are fitted by :mod:`webfem.studies.fit_build` and stored in an ``.npz`` file.
+and spread) are fitted by :mod:`webfem.studies.fit_build` and stored in an ``.npz`` file;
+the centres x_i are the training points or, in a compressed fit, a subset of them with
+weights fitted to all (subset of regressors). :class:`Stack` evaluates several kernels, each
+its own centres and length scales, in one pass.
 
 Examples
 --------
@@ -22,7 +25,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-__all__ = ["Kernel", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
+__all__ = ["Kernel", "Stack", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
 
 _SQRT5 = np.sqrt(5.0)
 #: From this many points the kernel runs its matrix products on one BLAS thread: blocks of a

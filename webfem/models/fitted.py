@@ -205,7 +205,8 @@ def read_profile(case: Case, H, P, H_min, s_min, H_center=None, share=None) -> d
 
 
 #: How the fitted model answers (the results' ``diagnostics.method``).
-METHOD = "fit of fe2d solutions (Matern-5/2 GP mean) + Eqs. 10-13, 28-31 on its profile"
+METHOD = ("fit of fe2d solutions (Matern-5/2 kernels, subset-of-regressors GP mean) + "
+          "Eqs. 10-13, 28-31 on its profile")
 
 
 def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,

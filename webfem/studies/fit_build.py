@@ -332,12 +332,12 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
         info = (f"trained on {len(train)} fe2d solutions with the web held at the entry and "
                 "exit zones' ends (wrap.ends = held; otherwise the default full physics, smooth "
                 f"roller); errors stated from {len(hold)} hold-out points solved again with "
-                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m); "
-                f"{datetime.date.today().isoformat()}")
+                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m)")
     else:
         info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
-                f"physics, smooth roller), {len(hold)} held out; "
-                f"{datetime.date.today().isoformat()}")
+                f"physics, smooth roller), {len(hold)} held out")
+    kept = " / ".join(str(len(k.centres)) for k in (kernel, *scalars))
+    info += f"; kernels of {kept} centres; {datetime.date.today().isoformat()}"
     fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "scalars": scalars,
            "scalar_names": tuple(SCALARS[c] for cols in SCALAR_KERNELS for c in cols)}
     errs = holdout_errors(hold, fit)
