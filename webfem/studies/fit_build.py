@@ -69,8 +69,8 @@ HYPER_POINTS = 450
 #: :data:`SCALAR_KERNELS`'. Chosen on the 1642-point campaign's hold-out set (docs/fit.md,
 #: "Speed"): 200 / 400 / 300 of its 1220 points kept every hold-out median and 95th
 #: percentile within the bootstrap's noise of the full fit, at a quarter of the
-#: evaluation's work; 200 for the gaps doubled the flying points' 95th percentile in h_min,
-#: 100-200 for the contact share its median. A campaign with fewer training points keeps
+#: evaluation's work; 200 for the gaps raised the flying points' 95th percentile in h_min
+#: by half, 100-200 for the contact share doubled its median. A campaign with fewer training points keeps
 #: them all; ``webfem fit build`` reports the full fit's hold-out errors beside.
 CENTRES = (200, 400, 300)
 
