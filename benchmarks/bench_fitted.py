@@ -2,7 +2,7 @@
 evaluation speed, and its errors against fe2d on fresh points of another design.
 
     python benchmarks/bench_fitted.py coverage [--points 2000]
-    python benchmarks/bench_fitted.py speed
+    python benchmarks/bench_fitted.py speed [--coefficients FILE.npz]
     python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
     python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
     python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
@@ -55,17 +55,17 @@ def coverage(points: int) -> None:
           f"the fitted domain ({inside / possible:.1%}); outside by group: {why}")
 
 
-def speed() -> None:
+def speed(coefficients: str | None = None) -> None:
     """The speed targets of issue 24, each figure beside its target (best of three runs;
-    the machine's load counts: say what it was)."""
+    the machine's load counts: say what it was); ``coefficients``: another fit's file."""
     import os
     import webfem
     from webfem import Case
     from webfem.models import fit_groups as fg
     from webfem.models import fitted
-    fitted.coefficients()
+    fit = fitted.coefficients(coefficients)
     case = Case()
-    webfem.solve(case, model="fitted")
+    webfem.solve(case, model="fitted", coefficients=coefficients)
 
     def best(f, repeat=3):
         times = []
@@ -75,22 +75,26 @@ def speed() -> None:
             times.append(time.perf_counter() - t0)
         return min(times)
     n = 200
-    one = best(lambda: [webfem.solve(case, model="fitted") for _ in range(n)]) / n
+    one = best(lambda: [webfem.solve(case, model="fitted", coefficients=coefficients)
+                        for _ in range(n)]) / n
     cases = [case.updated({"roller.speed": float(u)}) for u in np.linspace(15, 40, 10_000)]
-    many = best(lambda: webfem.solve_many(cases, model="fitted"))
+    many = best(lambda: webfem.solve_many(cases, model="fitted", coefficients=coefficients))
     G = np.repeat(fg.group_array(fg.groups_of(case)), 100_000, axis=0)
     G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
-    raw = len(G) / best(lambda: fitted.predict(G))
-    fit = fitted.coefficients()
+    raw = len(G) / best(lambda: fitted.predict(G, fit))
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
-    kernel = len(G) / best(lambda: fit["kernel"](x))
-    k = fit["kernel"]
-    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; "
-          f"fit: {len(k.centres)} centres, {k.weights.shape[1]} outputs")
+    kernels = [fit["kernel"], *fit["scalars"]]
+    if fit.get("stack") is not None:      # the kernels in one pass, as predict runs them
+        kernel = len(G) / best(lambda: fit["stack"](x))
+    else:
+        kernel = len(G) / best(lambda: [k(x) for k in kernels])
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; fit: "
+          + ", ".join(f"{len(k.centres)} centres x {k.weights.shape[1]} outputs"
+                      for k in kernels))
     print(f"one webfem.solve(model='fitted'):       {one * 1e3:8.3f} ms      (target <= 1 ms)")
     print(f"webfem.solve_many of 10,000 (results):  {many:8.3f} s       (target <= 1 s)")
     print(f"fitted.predict (raw profile, 100,000):  {raw:8.3g} points/s (target >= 1e6)")
-    print(f"  of which the kernel alone:            {kernel:8.3g} points/s")
+    print(f"  of which the kernels alone:           {kernel:8.3g} points/s")
 
 
 def fresh(points: int, seed: int) -> None:
@@ -221,11 +225,12 @@ def main() -> None:
     ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
     ap.add_argument("--seed", type=int, default=2024)
+    ap.add_argument("--coefficients", default=None, help="speed: another fit's .npz file")
     a = ap.parse_args()
     if a.what == "coverage":
         coverage(a.points or 2000)
     elif a.what == "speed":
-        speed()
+        speed(a.coefficients)
     elif a.what == "maps":
         maps(a.out)
     elif a.what == "methods":

@@ -95,6 +95,9 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
     grown = json.loads(capsys.readouterr().out)
     assert grown["train"] + grown["holdout"] + grown["failed"] == 7
     assert not grown["holdout_rechecked"]
+    # so few training points are all kept as centres: the compressed fit is the full one
+    assert grown["centres"] == [grown["train"]] * 3
+    assert grown["full_fit_percentiles_50_90_95_max"] == grown["percentiles_50_90_95_max"]
     # --recheck: the hold-out point (design point 4) solved again with today's physics into
     # holdout.csv, whose rows then state the errors; here the physics is the same, so the
     # answers and the stated table are too
@@ -354,6 +357,62 @@ def test_the_blocked_kernel_is_the_generic_formula():
     np.testing.assert_allclose(k(c), (np.hstack([np.ones((40, 1)), c]) @ k.trend
                                       + matern52(c, c, k.scales) @ k.weights) * k.y_std
                                + k.y_mean, rtol=1e-9, atol=1e-9)   # at the centres (r = 0)
+
+
+def test_the_stacked_kernels_are_each_kernel_side_by_side():
+    from webfem.models.fit_kernel import Kernel, Stack
+    rng = np.random.default_rng(4)
+    kernels = [Kernel(centres=rng.uniform(size=(m, 3)), scales=rng.uniform(0.2, 2.0, 3),
+                      trend=rng.normal(size=(4, k)), weights=rng.normal(size=(m, k)),
+                      y_mean=rng.normal(size=k), y_std=rng.uniform(0.5, 2.0, k))
+               for m, k in ((40, 5), (25, 2), (60, 1))]
+    x = rng.uniform(size=(700, 3))
+    each = np.column_stack([k(x) for k in kernels])
+    stack = Stack(kernels)
+    assert stack.n_outputs == 8
+    np.testing.assert_allclose(stack(x), each, rtol=1e-12, atol=1e-12)   # many points
+    np.testing.assert_allclose(stack(x[:3]), each[:3], rtol=1e-12, atol=1e-12)
+    # the radial function in float32 (as the fitted model runs it): float32's rounding
+    # (6e-8) times the weights' sum, and each point's answer still independent of the batch
+    fast = Stack(kernels, radial=np.float32)
+    bound = 1e-6 * sum(np.abs(k.weights * k.y_std).sum(axis=0).max() for k in kernels)
+    np.testing.assert_allclose(fast(x), each, rtol=0, atol=bound)
+    assert np.abs(fast(x) - each).max() > 1e-12            # float32 it is
+    np.testing.assert_allclose(np.vstack([fast(x[i:i + 1]) for i in range(5)]), fast(x)[:5],
+                               rtol=1e-13, atol=1e-13)
+
+
+def test_the_compressed_fit_is_the_gp_mean_with_every_centre_and_spreads_them():
+    from webfem.models.fit_kernel import matern52
+    from webfem.studies import fit_build as fb
+    rng = np.random.default_rng(5)
+    x = rng.uniform(size=(60, 2))
+    y = np.column_stack([np.sin(3 * x[:, 0]) * x[:, 1], np.cos(2 * x[:, 1])])
+    scales, nugget = np.array([0.4, 0.6]), 1e-3
+    gp = np.linalg.solve(matern52(x, x, scales) + nugget * np.eye(60), y)
+    np.testing.assert_allclose(fb.sor_weights(x, y, scales, nugget, np.arange(60)), gp,
+                               rtol=1e-6, atol=1e-6 * np.abs(gp).max())
+    # on a line the pivoted Cholesky takes the ends first, then fills in between
+    line = np.linspace(0.0, 1.0, 41)[:, None]
+    idx = fb.select_centres(line, np.array([0.2]), 5)
+    assert len(set(idx.tolist())) == 5
+    assert set(idx[:2].tolist()) == {0, 40}
+    assert np.diff(np.sort(line[idx, 0])).min() > 0.15
+    # fewer centres, fitted to every point: close to the full fit on a smooth function
+    k = fb.fit_kernel(x, y, trend=False, hyper=(scales, nugget), centres=25)
+    full = fb.fit_kernel(x, y, trend=False, hyper=(scales, nugget))
+    xt = rng.uniform(0.1, 0.9, size=(200, 2))
+    assert len(k.centres) == 25
+    assert np.abs(k(xt) - full(xt)).max() < 0.05 * np.abs(full(xt)).max()
+
+
+def test_the_shipped_fit_is_the_compressed_build():
+    """The shipped coefficients come from `webfem fit build` with its compression (the
+    stated errors are this fit's own hold-out errors)."""
+    from webfem.studies import fit_build as fb
+    fit = fitted.coefficients()
+    assert [len(k.centres) for k in (fit["kernel"], *fit["scalars"])] == list(fb.CENTRES)
+    assert fit["stack"] is not None
 
 
 def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():

@@ -93,6 +93,10 @@ def run(args) -> int:
           + ("; the hold-out points solved again with the current physics (holdout.csv) "
              "state the errors" if report["holdout_rechecked"] else ""))
     print("hold-out error percentiles 50/90/95/max:")
+    full = report["full_fit_percentiles_50_90_95_max"]
+    print(f"  (centres kept: {', '.join(str(m) for m in report['centres'])} of "
+          f"{report['train']}; the fit with every one, in brackets)")
     for q, v in report["percentiles_50_90_95_max"].items():
-        print(f"  {q:<14} " + " ".join(f"{x:.3g}" for x in v))
+        print(f"  {q:<14} " + " ".join(f"{x:.3g}" for x in v)
+              + "  (" + " ".join(f"{x:.3g}" for x in full[q]) + ")")
     return 0

@@ -4,7 +4,10 @@ anisotropic (ARD) Matern-5/2 kernel over a linear trend, many outputs sharing on
 y(x) = [1, x] b + sum_i k(x, x_i) a_i with k(x, x') = (1 + r sqrt5 + 5 r^2 / 3)
 exp(-r sqrt5), r = |(x - x') / l|; x are the fit's coordinates mapped to the unit box.
 The coefficients (``centres``, ``scales`` l, ``trend`` b, ``weights`` a, the outputs' mean
-and spread) are fitted by :mod:`webfem.studies.fit_build` and stored in an ``.npz`` file.
+and spread) are fitted by :mod:`webfem.studies.fit_build` and stored in an ``.npz`` file;
+the centres x_i are the training points or, in a compressed fit, a subset of them with
+weights fitted to all (subset of regressors). :class:`Stack` evaluates several kernels, each
+its own centres and length scales, in one pass.
 
 Examples
 --------
@@ -22,7 +25,7 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-__all__ = ["Kernel", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
+__all__ = ["Kernel", "Stack", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
 
 _SQRT5 = np.sqrt(5.0)
 #: From this many points the kernel runs its matrix products on one BLAS thread: blocks of a
@@ -137,3 +140,71 @@ class Kernel:
         return cls(**{k: np.asarray(data[f"{prefix}_{k}"], float) for k in
                       ("centres", "scales", "trend", "weights", "y_mean", "y_std")},
                    kind=str(data[f"{prefix}_kind"]))
+
+
+class Stack:
+    """Several Matern-5/2 :class:`Kernel` s (each its own centres and length scales)
+    evaluated in one pass: one matrix product gives every kernel's squared distances
+    (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x^2, x and 1 side by side), one sweep of the
+    radial function covers all the centres, then each kernel's weights on its own columns;
+    the outputs side by side, in the kernels' order. The same values as calling each kernel
+    to rounding, with the per-call costs paid once.
+
+    ``radial``: the type the radial function (sqrt, exp and its polynomial, the bulk of the
+    work) is evaluated in; the distances and the weight product stay in float64, so each
+    point's answer does not depend on the others in the batch."""
+
+    def __init__(self, kernels, radial=np.float64):
+        kernels = list(kernels)
+        if any(k.kind != "matern52" for k in kernels):
+            raise ValueError("Stack evaluates Matern-5/2 kernels only")
+        self.radial = np.dtype(radial)
+        cols, self._blocks = [], []
+        start = out = 0
+        for k in kernels:
+            inv2 = 1.0 / k.scales ** 2
+            cols.append(np.vstack([np.repeat(inv2[:, None], len(k.centres), axis=1),
+                                   -2.0 * (k.centres * inv2).T,
+                                   np.sum(k.centres ** 2 * inv2, axis=1)[None, :]]))
+            _, _, w, t0, t1 = k._prepared
+            self._blocks.append((slice(start, start + len(k.centres)),
+                                 slice(out, out + w.shape[1]),
+                                 np.ascontiguousarray(w / 3.0), t0, t1))
+            start += len(k.centres)
+            out += w.shape[1]
+        # times 5: the product is (sqrt5 r)^2, which the radial function takes as it comes
+        self._A = np.ascontiguousarray(5.0 * np.hstack(cols))
+        self.n_outputs = out
+
+    def __call__(self, x: np.ndarray, chunk: int = 256) -> np.ndarray:
+        x = np.atleast_2d(np.asarray(x, float))
+        if len(x) < ONE_THREAD_FROM:
+            return self._run(x, chunk)
+        with blas_one_thread():
+            return self._run(x, chunk)
+
+    def _run(self, x: np.ndarray, chunk: int) -> np.ndarray:
+        out = np.empty((len(x), self.n_outputs))
+        xx = np.hstack([x * x, x, np.ones((len(x), 1))])
+        f32 = self.radial != np.float64
+        for i in range(0, len(x), chunk):
+            r = xx[i:i + chunk] @ self._A
+            np.maximum(r, 0.0, out=r)        # rounding may leave a coincident point below 0
+            if f32:
+                r = r.astype(self.radial)
+            np.sqrt(r, out=r)
+            e = np.negative(r)
+            np.exp(e, out=e)
+            phi = r + 3.0                    # 3 (1 + r + r^2/3) e^-r; the 1/3 is in the weights
+            phi *= r
+            phi += 3.0
+            phi *= e
+            if f32:
+                phi = phi.astype(np.float64)
+            xi = x[i:i + chunk]
+            for cols, outs, w, t0, t1 in self._blocks:
+                o = out[i:i + chunk, outs]
+                np.matmul(phi[:, cols], w, out=o)
+                o += t0
+                o += xi @ t1
+        return out

@@ -15,7 +15,10 @@ length scales and nugget minimise the leave-one-out error (closed form) of a fix
 (in :func:`webfem.models.fit_groups.gap_to_asinh`, which has no floor, less their
 baseline's) and the contact share are fitted on their own (:func:`scalar_targets`), each
 with its own length scales: measured better than the profile's values on the hold-out set
-(docs/fit.md). :func:`holdout_errors` evaluates the model, as users get it, on the hold-out
+(docs/fit.md). The fit is then compressed for speed: each kernel keeps :data:`CENTRES`
+of the training points as centres, chosen by pivoted Cholesky (:func:`select_centres`), with
+weights fitted to all of them (subset of regressors, :func:`sor_weights`; same length scales
+and nugget). :func:`holdout_errors` evaluates the model, as users get it, on the hold-out
 rows against their fe2d answers; the stated error per region is the 95th percentile there.
 
 Examples
@@ -35,8 +38,8 @@ from ..models import fit_groups as fg
 from ..models.fit_kernel import Kernel, blas_one_thread, matern52, thin_plate
 from ..models.readout import error_scale
 
-__all__ = ["targets", "scalar_targets", "fit_kernel", "holdout_errors", "REGION_EDGES",
-           "QUANTILE", "SCALARS"]
+__all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select_centres",
+           "sor_weights", "holdout_errors", "REGION_EDGES", "QUANTILE", "SCALARS", "CENTRES"]
 
 #: Regions of the predicted H_min / S: resting (< 1.5), landing, flying (> 4).
 REGION_EDGES = np.array([1.5, 4.0])
@@ -61,6 +64,15 @@ SCALAR_CLIP = 4.0
 #: on the 1220 of the shipped fit the leave-one-out on all of them took 5 minutes and
 #: measured no better on the hold-out set (docs/fit.md).
 HYPER_POINTS = 450
+#: Centres kept by the compressed fit (:func:`select_centres`, weights fitted to every
+#: training point: :func:`sor_weights`): the profile's kernel, then each of
+#: :data:`SCALAR_KERNELS`'. Chosen on the 1642-point campaign's hold-out set (docs/fit.md,
+#: "Speed"): 200 / 400 / 300 of its 1220 points kept every hold-out median and 95th
+#: percentile within the bootstrap's noise of the full fit, at a quarter of the
+#: evaluation's work; 200 for the gaps raised the flying points' 95th percentile in h_min
+#: by half, 100-200 for the contact share doubled its median. A campaign with fewer training points keeps
+#: them all; ``webfem fit build`` reports the full fit's hold-out errors beside.
+CENTRES = (200, 400, 300)
 
 
 def targets(rows) -> np.ndarray:
@@ -106,23 +118,14 @@ def _loo(x, y, log_scales, log_nugget):
     return (Ki @ y) / np.diag(Ki)[:, None]
 
 
-def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
-               seed: int = 0, trend: bool = True, hyper_points: int | None = None) -> Kernel:
-    """The interpolant of outputs ``y`` (n, k) at unit-box points ``x`` (n, m): linear trend
-    by least squares, then the kernel's length scales and nugget minimising the weighted
-    leave-one-out error of the trend's residuals. ``hyper_points``: choose the length scales
-    and nugget on that many of the points (a fixed draw by ``seed``; each leave-one-out
-    costs an n x n inverse), then solve for the weights on all of them."""
+def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: int = 2,
+                    seed: int = 0, hyper_points: int | None = None) -> tuple[np.ndarray, float]:
+    """The length scales and nugget of the kernel minimising the weighted leave-one-out
+    error (closed form) of the residuals ``res`` (n, k) at unit-box points ``x``, on
+    ``hyper_points`` of them (a fixed draw by ``seed``; each leave-one-out costs an n x n
+    inverse) or all."""
     from scipy.optimize import minimize
-    y_mean, y_std = y.mean(0), np.maximum(y.std(0), 1e-12)
-    ys = (y - y_mean) / y_std
-    A = np.hstack([np.ones((len(x), 1)), x])
-    if trend:
-        trend, *_ = np.linalg.lstsq(A, ys, rcond=None)
-    else:    # the mean alone: far from the data the fit returns to the baseline's
-        trend = np.zeros((A.shape[1], ys.shape[1]))
-    res = ys - A @ trend
-    w = np.ones(y.shape[1]) if weights is None else np.asarray(weights, float)
+    w = np.ones(res.shape[1]) if weights is None else np.asarray(weights, float)
     m = x.shape[1]
     sub = np.arange(len(x))
     if hyper_points is not None and hyper_points < len(x):
@@ -146,10 +149,73 @@ def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
                        options={"maxiter": 200})
         if best is None or opt.fun < best.fun:
             best = opt
-    scales, nugget = np.exp(best.x[:m]), np.exp(best.x[m])
-    K = matern52(x, x, scales) + nugget * np.eye(len(x))
-    weights_ = np.linalg.solve(K, res)
-    return Kernel(centres=x, scales=scales, trend=trend, weights=weights_, y_mean=y_mean,
+    return np.exp(best.x[:m]), float(np.exp(best.x[m]))
+
+
+def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
+    """Indices of ``m`` rows of ``x`` chosen as centres by pivoted Cholesky on the kernel
+    matrix: each next centre is the point the chosen ones' span predicts worst (largest
+    remaining variance), so they spread evenly in the kernel's own metric; deterministic."""
+    n = len(x)
+    m = min(m, n)
+    K = matern52(x, x, scales)
+    d = np.diag(K).copy()
+    L = np.zeros((m, n))
+    chosen = []
+    for j in range(m):
+        i = int(np.argmax(d))
+        chosen.append(i)
+        L[j] = (K[i] - L[:j, i] @ L[:j]) / np.sqrt(d[i])
+        d -= L[j] ** 2
+        d[chosen] = -np.inf
+    return np.array(chosen)
+
+
+def sor_weights(x: np.ndarray, res: np.ndarray, scales: np.ndarray, nugget: float,
+                idx: np.ndarray) -> np.ndarray:
+    """The subset-of-regressors weights at the centres ``x[idx]``, fitted to all points:
+    min |K_nm a - res|^2 + nugget a' K_mm a (the GP mean's weights when idx is every
+    point), by least squares on the stacked system (K_mm's Cholesky factor)."""
+    Knm = matern52(x, x[idx], scales)
+    Kmm = Knm[idx]
+    L = np.linalg.cholesky(Kmm + 1e-10 * np.eye(len(idx)))
+    A = np.vstack([Knm, np.sqrt(nugget) * L.T])
+    b = np.vstack([res, np.zeros((len(idx), res.shape[1]))])
+    return np.linalg.lstsq(A, b, rcond=None)[0]
+
+
+def _standardised(y: np.ndarray) -> np.ndarray:
+    """Outputs ``y`` less their mean, over their spread (as :func:`fit_kernel` fits them)."""
+    return (y - y.mean(0)) / np.maximum(y.std(0), 1e-12)
+
+
+def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
+               seed: int = 0, trend: bool = True, hyper_points: int | None = None,
+               centres: int | None = None, hyper=None) -> Kernel:
+    """The interpolant of outputs ``y`` (n, k) at unit-box points ``x`` (n, m): linear trend
+    by least squares, then the kernel's length scales and nugget minimising the weighted
+    leave-one-out error of the trend's residuals (:func:`hyperparameters`; ``hyper``:
+    given instead, as (scales, nugget)). ``hyper_points``: choose them on that many of the
+    points, then solve for the weights on all of them. ``centres``: keep that many
+    centres (:func:`select_centres`), their weights fitted to all the points
+    (:func:`sor_weights`); None keeps every point (the GP mean)."""
+    y_mean, y_std = y.mean(0), np.maximum(y.std(0), 1e-12)
+    ys = _standardised(y)
+    A = np.hstack([np.ones((len(x), 1)), x])
+    if trend:
+        trend, *_ = np.linalg.lstsq(A, ys, rcond=None)
+    else:    # the mean alone: far from the data the fit returns to the baseline's
+        trend = np.zeros((A.shape[1], ys.shape[1]))
+    res = ys - A @ trend
+    scales, nugget = hyper if hyper is not None else hyperparameters(
+        x, res, weights=weights, restarts=restarts, seed=seed, hyper_points=hyper_points)
+    if centres is None or centres >= len(x):
+        K = matern52(x, x, scales) + nugget * np.eye(len(x))
+        return Kernel(centres=x, scales=scales, trend=trend, weights=np.linalg.solve(K, res),
+                      y_mean=y_mean, y_std=y_std)
+    idx = select_centres(x, scales, centres)
+    return Kernel(centres=x[idx], scales=scales, trend=trend,
+                  weights=sor_weights(x, res, scales, nugget, idx), y_mean=y_mean,
                   y_std=y_std)
 
 
@@ -252,24 +318,31 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     # on one BLAS thread: the optimiser's path, hence the coefficients, then do not depend
     # on the machine's thread count (the rebuild is bit for bit), and on a loaded machine
     # one thread is the faster
+    outputs = [y] + [ys[:, list(cols)] for cols in SCALAR_KERNELS]
     with blas_one_thread():
-        kernel = fit_kernel(x, y, restarts=restarts, trend=False, hyper_points=HYPER_POINTS)
-        scalars = [fit_kernel(x, ys[:, list(cols)], restarts=restarts, trend=False,
-                              hyper_points=HYPER_POINTS) for cols in SCALAR_KERNELS]
+        hyper = [hyperparameters(x, _standardised(t), restarts=restarts,
+                                 hyper_points=HYPER_POINTS) for t in outputs]
+        kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m)
+                            for t, h, m in zip(outputs, hyper, CENTRES))
+        # the full fit (every training point a centre) on the same length scales: the
+        # report states what the compression costs on this campaign's hold-out set
+        full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h)
+                               for t, h in zip(outputs, hyper))
     if rechecked:
         info = (f"trained on {len(train)} fe2d solutions with the web held at the entry and "
                 "exit zones' ends (wrap.ends = held; otherwise the default full physics, smooth "
                 f"roller); errors stated from {len(hold)} hold-out points solved again with "
-                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m); "
-                f"{datetime.date.today().isoformat()}")
+                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m)")
     else:
         info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
-                f"physics, smooth roller), {len(hold)} held out; "
-                f"{datetime.date.today().isoformat()}")
+                f"physics, smooth roller), {len(hold)} held out")
+    kept = " / ".join(str(len(k.centres)) for k in (kernel, *scalars))
+    info += f"; kernels of {kept} centres; {datetime.date.today().isoformat()}"
     fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "scalars": scalars,
            "scalar_names": tuple(SCALARS[c] for cols in SCALAR_KERNELS for c in cols)}
     errs = holdout_errors(hold, fit)
     table = region_errors(errs)
+    errs_full = holdout_errors(hold, {**fit, "kernel": full, "scalars": full_scalars})
     Path(out_npz).parent.mkdir(parents=True, exist_ok=True)
     extra = {}
     for j, k in enumerate(scalars):
@@ -282,9 +355,12 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
                                                  for r in hold]),
                         holdout_values=np.array([[r[q] for q in QUANTITIES] for r in hold]),
                         holdout_seconds=np.array([r["seconds"] for r in hold]))
-    pct = {q: np.percentile(errs[q], [50, 90, 95, 100]).tolist() for q in QUANTITIES}
+    def pct(e):
+        return {q: np.percentile(e[q], [50, 90, 95, 100]).tolist() for q in QUANTITIES}
     return {"train": len(train), "holdout": len(hold), "failed": sum(
         1 for r in typed(read_table(campaign_csv).rows) if not r["converged"]),
         "holdout_rechecked": rechecked,
-        "percentiles_50_90_95_max": pct, "stated": table.tolist(),
+        "percentiles_50_90_95_max": pct(errs), "stated": table.tolist(),
+        "centres": [len(k.centres) for k in (kernel, *scalars)],
+        "full_fit_percentiles_50_90_95_max": pct(errs_full),
         "regions": np.bincount(errs["region"], minlength=3).tolist(), "info": info}
