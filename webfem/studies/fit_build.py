@@ -289,6 +289,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     import datetime
     from pathlib import Path
     from .. import __version__
+    from ..case import Case
     from ..errors import InputError
     from ..models.fitted import QUANTITIES
     from ..sweeps.table import read_table, typed
@@ -328,14 +329,16 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
         # report states what the compression costs on this campaign's hold-out set
         full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h)
                                for t, h in zip(outputs, hyper))
+    span = Case().span_used
+    ends = f"wrap.ends = span, {span:g} m" if span else "wrap.ends = held"
     if rechecked:
-        info = (f"trained on {len(train)} fe2d solutions with the web held at the entry and "
-                "exit zones' ends (wrap.ends = held; otherwise the default full physics, smooth "
-                f"roller); errors stated from {len(hold)} hold-out points solved again with "
-                f"webfem {__version__}'s default physics (wrap.ends = span, 1 m)")
+        # the training rows may come from an earlier physics: the errors are today's
+        info = (f"trained on {len(train)} fe2d solutions of an earlier campaign; errors "
+                f"stated from {len(hold)} hold-out points solved again with webfem "
+                f"{__version__}'s default physics ({ends}, smooth roller)")
     else:
         info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
-                f"physics, smooth roller), {len(hold)} held out")
+                f"physics: {ends}; smooth roller), {len(hold)} held out")
     kept = " / ".join(str(len(k.centres)) for k in (kernel, *scalars))
     info += f"; kernels of {kept} centres; {datetime.date.today().isoformat()}"
     fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "scalars": scalars,
