@@ -20,8 +20,8 @@ from webfem.studies.time_limit import time_limit
 
 def main() -> None:
     warnings.simplefilter("ignore")
-    rows = [r for r in csv.DictReader(open(sys.argv[1]))
-            if r["holdout"] == "1" and r["converged"] == "True"]
+    with open(sys.argv[1], newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["holdout"] == "1" and r["converged"] == "True"]
     rows.sort(key=lambda r: float(r["g_Dn"]))
     pick = rows[::max(1, len(rows) // int(sys.argv[2]))]
     Q = ("h_center", "h_min", "mu", "contact_share")
@@ -35,7 +35,8 @@ def main() -> None:
                 with time_limit(40.0):
                     a = webfem.solve(case.updated({"wrap.span": span}), model="fe2d",
                                      **fc.FE2D_OPTIONS)
-                rec[span] = {q: abs(a[q] - float(r[q])) / error_scale(case, q, float(r[q])) for q in Q}
+                rec[span] = {q: abs(a[q] - float(r[q])) / error_scale(case, q, float(r[q]))
+                             for q in Q}
             except Exception as e:
                 rec[span] = str(e)[:60]
         print(json.dumps(rec), flush=True)

@@ -413,6 +413,12 @@ def test_the_shipped_fit_is_the_compressed_build():
     fit = fitted.coefficients()
     assert [len(k.centres) for k in (fit["kernel"], *fit["scalars"])] == list(fb.CENTRES)
     assert fit["stack"] is not None
+    # the stated table is this fit's: its hold-out answers, judged through it, give it back
+    npz = np.load(fitted.COEFFICIENTS)
+    rows = [{**{f"g_{g}": v for g, v in zip(fg.GROUPS, G)}, **dict(zip(fitted.QUANTITIES, V))}
+            for G, V in zip(npz["holdout_groups"], npz["holdout_values"])]
+    table = fb.region_errors(fb.holdout_errors(rows, fit))
+    assert np.allclose(table, fit["errors"], rtol=1e-9, atol=0.0)
 
 
 def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():

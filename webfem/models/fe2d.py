@@ -430,10 +430,9 @@ class _Film(Discretisation):
         (``kept["coarse"]``). Before the coarse solve, the coarse cells where the mesh misses
         the 1-D solution (``p1``, ``u1``: on the 1-D starting mesh, not refined, the 2-D
         gap being thinner than the 1-D's decides that) are bisected (:data:`LINE_MISFIT`;
-        Q2 elements):
-        the mesh the estimate would otherwise have bisected after the fine solve, decided
-        up front. Returns ``(problem, u0, info, kept)`` or None (the direct start on the 1-D
-        mesh: a coarse solve failed or ended inadmissible)."""
+        Q2 elements): the mesh the estimate would otherwise have bisected after the fine
+        solve, decided up front. Returns ``(problem, u0, info, kept)`` or None (the direct
+        start on the 1-D mesh: a coarse solve failed or ended inadmissible)."""
         if not _decides_up_front(case, options):
             return None
         e = 0.5 * prm.beta

@@ -61,17 +61,19 @@ SCALAR_KERNELS = ((0, 1), (2,))
 #: times), narrow enough that the few extreme points do not set the length scales.
 SCALAR_CLIP = 4.0
 #: The length scales and nugget are chosen on this many training points (a fixed draw):
-#: on the 1220 of the shipped fit the leave-one-out on all of them took 5 minutes and
-#: measured no better on the hold-out set (docs/fit.md).
+#: on the 1220 training points of the held-ends campaign the leave-one-out on all of them
+#: took 5 minutes and measured no better on the hold-out set (docs/fit.md).
 HYPER_POINTS = 450
 #: Centres kept by the compressed fit (:func:`select_centres`, weights fitted to every
 #: training point: :func:`sor_weights`): the profile's kernel, then each of
-#: :data:`SCALAR_KERNELS`'. Chosen on the 1642-point campaign's hold-out set (docs/fit.md,
+#: :data:`SCALAR_KERNELS`'. Chosen on the held-ends campaign's hold-out set (docs/fit.md,
 #: "Speed"): 200 / 400 / 300 of its 1220 points kept every hold-out median and 95th
 #: percentile within the bootstrap's noise of the full fit, at a quarter of the
 #: evaluation's work; 200 for the gaps raised the flying points' 95th percentile in h_min
-#: by half, 100-200 for the contact share doubled its median. A campaign with fewer training points keeps
-#: them all; ``webfem fit build`` reports the full fit's hold-out errors beside.
+#: by half, 100-200 for the contact share doubled its median. Kept unchanged for the
+#: 1286 points of the spans campaign, where the build report's full fit measured the same
+#: within noise. A campaign with fewer training points keeps them all; ``webfem fit
+#: build`` reports the full fit's hold-out errors beside.
 CENTRES = (200, 400, 300)
 
 
