@@ -436,3 +436,18 @@ def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():
         assert r["h_min"] == pytest.approx(pr["H_min"][i] * case.h_scale, rel=1e-12)
         assert r["contact_share"] == pytest.approx(pr["share"][i], rel=1e-12, abs=1e-15)
         np.testing.assert_allclose(r.fields.h, pr["H"][i] * case.h_scale, rtol=1e-12)
+
+
+def test_a_fit_with_another_kernel_does_not_reuse_the_shipped_stack():
+    """A fit dict whose kernel was swapped (as a build's candidates are) is evaluated with
+    that kernel, not with the one-pass stack cached for the shipped kernels."""
+    import dataclasses
+    fit = fitted.coefficients()
+    k = fit["kernel"]
+    doubled = dataclasses.replace(k, y_std=2.0 * k.y_std)
+    G = fg.groups_of_columns(fg.case_columns(VARIED))
+    shipped = fitted.predict(G, fit)
+    other = fitted.predict(G, {**fit, "kernel": doubled})
+    assert not np.allclose(other["H"], shipped["H"])
+    direct = fitted.predict(G, {**fit, "kernel": doubled, "stack": None})
+    assert np.array_equal(other["H"], direct["H"])

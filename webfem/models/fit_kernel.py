@@ -158,6 +158,8 @@ class Stack:
         kernels = list(kernels)
         if any(k.kind != "matern52" for k in kernels):
             raise ValueError("Stack evaluates Matern-5/2 kernels only")
+        # kept to tell whether a fit still holds these kernels (fitted.predict)
+        self.kernels = tuple(kernels)
         self.radial = np.dtype(radial)
         cols, self._blocks = [], []
         start = out = 0

@@ -105,7 +105,12 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
     fit = fit or coefficients()
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     n = len(fg.NODES)
-    stack = fit["stack"] if "stack" in fit else evaluator(fit["kernel"], fit.get("scalars", ()))
+    kernels = (fit["kernel"], *fit.get("scalars", ()))
+    stack = fit.get("stack")
+    if stack is None or len(stack.kernels) != len(kernels) or \
+            any(a is not b for a, b in zip(stack.kernels, kernels)):
+        # a fit whose kernels were swapped (a build's candidate) must not reuse the stack
+        stack = evaluator(fit["kernel"], fit.get("scalars", ()))
     if stack is not None:    # the profile, then every scalar, side by side
         Y = stack(x)
         scalars = ()
