@@ -220,8 +220,8 @@ def recheck(out_csv, n: int, *, seed: int = 24, timeout: float | None = 120.0,
             options=None, progress=None, workers: int = 1, dask=None) -> list[dict]:
     """Solve (or resume) the hold-out points among the first ``n`` design points again,
     with the current fe2d and physics, into ``out_csv``; returns the rows. For a fit trained
-    on rows of an earlier physics (the shipped one: the web held at the zones' ends, before
-    ``wrap.ends = "span"`` became the default): its stated errors are then measured against
+    on rows of an earlier physics (as the fit shipped until its retraining was: the web held
+    at the zones' ends, before ``wrap.ends = "span"`` became the default): its stated errors are then measured against
     what fe2d answers now (:func:`webfem.studies.fit_build.build`'s ``holdout_csv``).
     Points that fail are solved again on a re-run; ``workers`` and ``dask`` as :func:`run`."""
     options = dict(FE2D_OPTIONS if options is None else options)
