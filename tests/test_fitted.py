@@ -451,3 +451,12 @@ def test_a_fit_with_another_kernel_does_not_reuse_the_shipped_stack():
     assert not np.allclose(other["H"], shipped["H"])
     direct = fitted.predict(G, {**fit, "kernel": doubled, "stack": None})
     assert np.array_equal(other["H"], direct["H"])
+
+
+def test_centres_stop_where_the_points_are_spanned():
+    """Five distinct points, each four times: asking for 20 centres gives the five, not a
+    division by a vanished remaining variance."""
+    from webfem.studies import fit_build as fb
+    x = np.repeat(np.random.default_rng(1).random((5, 3)), 4, axis=0)
+    idx = fb.select_centres(x, np.ones(3), 20)
+    assert len(idx) == 5 and len({tuple(x[i]) for i in idx}) == 5

@@ -157,15 +157,19 @@ def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: i
 def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
     """Indices of ``m`` rows of ``x`` chosen as centres by pivoted Cholesky on the kernel
     matrix: each next centre is the point the chosen ones' span predicts worst (largest
-    remaining variance), so they spread evenly in the kernel's own metric; deterministic."""
+    remaining variance), so they spread evenly in the kernel's own metric; deterministic.
+    Fewer where the chosen ones already span every point to rounding (repeated points)."""
     n = len(x)
     m = min(m, n)
     K = matern52(x, x, scales)
     d = np.diag(K).copy()
+    d0 = float(d.max())
     L = np.zeros((m, n))
     chosen = []
     for j in range(m):
         i = int(np.argmax(d))
+        if d[i] <= 1e-12 * d0:
+            break      # the points left are spanned to rounding: another would divide by ~0
         chosen.append(i)
         L[j] = (K[i] - L[:j, i] @ L[:j]) / np.sqrt(d[i])
         d -= L[j] ** 2
