@@ -44,8 +44,8 @@ def main(lo=0.5, hi=40.0, n=24):
     solved = []
     rounds = fe2d._coarse_rounds
 
-    def recorded(case, prm, options, coarse, u0, what):
-        out = rounds(case, prm, options, coarse, u0, what)
+    def recorded(case, prm, options, coarse, u0, what, **kwargs):
+        out = rounds(case, prm, options, coarse, u0, what, **kwargs)
         if out is not None and what == "the coarser mesh first":
             solved.append((prm, options, coarse, u0, out))
         return out

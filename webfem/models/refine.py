@@ -69,8 +69,13 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
                 k_true = forms.contact_law(np.minimum(H_true[1:], H_true[:-1]),
                                            prm.as_form_args())[1]
                 scale = np.minimum(scale, (prm.Dn / np.maximum(kc, k_true)) ** 0.25)
-    dx = np.diff(X)
-    mark = (dx > ratio * scale) & (dx > 2.0 * min_cell)
+    return _bisected(X, np.diff(X) > ratio * scale, min_cell, max_cells)
+
+
+def _bisected(X, mark, min_cell, max_cells):
+    """``X`` with the ``mark`` ed cells halved where their halves stay longer than
+    ``min_cell``; None where none is left to halve or ``X`` would pass ``max_cells``."""
+    mark = mark & (np.diff(X) > 2.0 * min_cell)
     if not mark.any() or X.size + mark.sum() > max_cells:
         return None
     return np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
@@ -141,12 +146,13 @@ def interpolation_weights(X, gap, pressure, prm, order: int = 2, n: int = 4) -> 
 def interpolated_nodes(X, gap, pressure, prm, limit: float, min_cell: float,
                        order: int = 2, rounds: int = 2, max_cells: int = 4000) -> np.ndarray:
     """``X`` with the cells bisected, up to ``rounds`` times, whose
-    :func:`interpolation_weights` exceed ``limit``, down to cells of ``2 min_cell``."""
+    :func:`interpolation_weights` exceed ``limit``, while their halves stay longer than
+    ``min_cell``."""
     X = np.asarray(X, float)
     for _ in range(rounds):
-        w = interpolation_weights(X, gap, pressure, prm, order)
-        mark = (w > limit) & (np.diff(X) > 2.0 * min_cell)
-        if not mark.any() or X.size + mark.sum() > max_cells:
+        finer = _bisected(X, interpolation_weights(X, gap, pressure, prm, order) > limit,
+                          min_cell, max_cells)
+        if finer is None:
             break
-        X = np.sort(np.concatenate([X, 0.5 * (X[1:] + X[:-1])[mark]]))
+        X = finer
     return X

@@ -190,9 +190,11 @@ def sor_weights(x: np.ndarray, res: np.ndarray, scales: np.ndarray, nugget: floa
     return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
-def _standardised(y: np.ndarray) -> np.ndarray:
-    """Outputs ``y`` less their mean, over their spread (as :func:`fit_kernel` fits them)."""
-    return (y - y.mean(0)) / np.maximum(y.std(0), 1e-12)
+def _standardised(y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Outputs ``y`` less their mean, over their spread (as :func:`fit_kernel` fits them),
+    with that mean and spread."""
+    y_mean, y_std = y.mean(0), np.maximum(y.std(0), 1e-12)
+    return (y - y_mean) / y_std, y_mean, y_std
 
 
 def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
@@ -205,8 +207,7 @@ def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
     points, then solve for the weights on all of them. ``centres``: keep that many
     centres (:func:`select_centres`), their weights fitted to all the points
     (:func:`sor_weights`); None keeps every point (the GP mean)."""
-    y_mean, y_std = y.mean(0), np.maximum(y.std(0), 1e-12)
-    ys = _standardised(y)
+    ys, y_mean, y_std = _standardised(y)
     A = np.hstack([np.ones((len(x), 1)), x])
     if trend:
         trend, *_ = np.linalg.lstsq(A, ys, rcond=None)
@@ -327,7 +328,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     # one thread is the faster
     outputs = [y] + [ys[:, list(cols)] for cols in SCALAR_KERNELS]
     with blas_one_thread():
-        hyper = [hyperparameters(x, _standardised(t), restarts=restarts,
+        hyper = [hyperparameters(x, _standardised(t)[0], restarts=restarts,
                                  hyper_points=HYPER_POINTS) for t in outputs]
         kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m)
                             for t, h, m in zip(outputs, hyper, CENTRES))
