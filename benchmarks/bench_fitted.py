@@ -102,9 +102,11 @@ def fresh(points: int, seed: int) -> None:
     from webfem.models import fit_groups as fg
     from webfem.models.readout import READ_QUANTITIES, error_scale
     from webfem.studies import fit_campaign as fc
+    from webfem.studies.fit_build import DN_EDGES
     G = fc.design(points, seed=seed)
     errs = {q: [] for q in READ_QUANTITIES}
     ratio = {q: [] for q in READ_QUANTITIES}
+    Dn = []
     failed = 0
     t0 = time.perf_counter()
     for i, row in enumerate(G):
@@ -115,6 +117,7 @@ def fresh(points: int, seed: int) -> None:
             failed += 1
             continue
         r = webfem.solve(case, model="fitted")
+        Dn.append(g["Dn"])
         for q in READ_QUANTITIES:
             e = abs(r[q] - ref[q]) / error_scale(case, q, ref[q])
             errs[q].append(e)
@@ -126,6 +129,14 @@ def fresh(points: int, seed: int) -> None:
         print(f"  {q:<14} error 50/90/95 %: " + " ".join(
             f"{v:.3g}" for v in np.percentile(e, [50, 90, 95]))
               + f"; within stated {np.mean(k <= 1):.0%}, within 2x stated {np.mean(k <= 2):.0%}")
+    # the stated table's Dn bands (fit_build.DN_EDGES): the share within the stated error
+    Dn = np.array(Dn)
+    band = np.searchsorted(DN_EDGES, Dn)
+    for b, name in enumerate(("Dn < 1", "Dn 1-100", "Dn > 100")):
+        m = band == b
+        print(f"  {name:<9} ({m.sum()} points) within stated: " + " / ".join(
+            f"{np.mean(np.array(ratio[q])[m] <= 1):.0%}" for q in READ_QUANTITIES)
+              + " (" + " / ".join(READ_QUANTITIES) + ")")
 
 
 def maps(out: str) -> None:

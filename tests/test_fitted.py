@@ -110,6 +110,18 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
     rows = typed(read_table(store / "holdout.csv").rows)
     assert [r["n"] for r in rows] == [4]
     assert (store / "campaign.csv").read_text().splitlines()[:7] == before
+    # --extra-holdout: points of another design (EXTRA_SEED), every one held out, join the
+    # hold-out rows in stating the errors
+    assert main(["fit", "build", "--points", "7", "--store", str(store), "--timeout", "30",
+                 "--extra-holdout", "2", "--fit-only", "--json", "--quiet"]) == 0
+    extra = json.loads(capsys.readouterr().out)
+    rows = typed(read_table(store / "extra_holdout.csv").rows)
+    assert [r["n"] for r in rows] == [0, 1] and all(r["holdout"] == 1 for r in rows)
+    assert [r["g_beta"] for r in rows] == pytest.approx(
+        fc.design(2, seed=fc.EXTRA_SEED)[:, fg.GROUPS.index("beta")], rel=1e-12)
+    answered = sum(bool(r["converged"]) for r in rows)
+    assert extra["holdout_extra"] == answered >= 1
+    assert extra["holdout"] == rechecked["holdout"] + answered
     # the fit does not depend on the order of the rows (an interrupted parallel run leaves
     # them in the order they finished): the rows reversed refit to the same arrays
     lines = (store / "campaign.csv").read_text().splitlines(keepends=True)
@@ -460,3 +472,22 @@ def test_centres_stop_where_the_points_are_spanned():
     x = np.repeat(np.random.default_rng(1).random((5, 3)), 4, axis=0)
     idx = fb.select_centres(x, np.ones(3), 20)
     assert len(idx) == 5 and len({tuple(x[i]) for i in idx}) == 5
+
+
+def test_stated_errors_are_per_gap_region_and_bending_band():
+    """The stated table has a row per (gap region, Dn band): a stiff web's stated errors
+    are its band's, not the flexible webs' it shared a row with before (a flying stiff web's
+    h_min 95th percentile is several times a flexible one's on the hold-out set), and the
+    basis names the cell."""
+    fit = fitted.coefficients()
+    assert fit["errors"].shape == (9, len(fitted.QUANTITIES))
+    flying = fit["errors"][6:9]
+    assert flying[2, 1] > 2.0 * flying[0, 1]
+    stiff = Case().updated({"web.bending_stiffness": 0.5, "roller.speed": 30.0})
+    g = fg.groups_of(stiff)
+    assert g["Dn"] > 100.0 and fg.outside(stiff) is None
+    r = webfem.solve(stiff, model="fitted")
+    region = int(fitted.predict(fg.group_array(g))["region"][0])
+    assert region % 3 == 2
+    assert r["error_h_min"] == fit["errors"][region, 1]
+    assert "stiff web (bending group Dn > 100)" in r["error_basis"]

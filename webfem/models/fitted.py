@@ -12,8 +12,9 @@ the contact law), so the friction constants and the speeds add no dimensions to 
 Its domain is the box of groups the campaign sampled and the default full physics on a
 smooth roller; outside it the model refuses (:class:`OutsideDomain`, naming the group, its
 value and its range), and auto moves on. Its stated errors (``error_h_center``, ...) are the
-95th percentile of the errors on a hold-out set never used in fitting, per region of the
-predicted smallest gap over the roughness (flying, landing, resting).
+95th percentile of the errors on a hold-out set never used in fitting, per region: the
+predicted smallest gap over the roughness (flying, landing, resting) and the bending group
+Dn (flexible < 1, 1-100, stiff > 100; :func:`region_of`).
 
 Examples
 --------
@@ -45,7 +46,7 @@ from .options import FittedOptions
 
 __all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "read_profiles",
            "OutsideDomain",
-           "NAME",
+           "NAME", "region_of", "region_name",
            "COEFFICIENTS", "coefficients", "evaluator"]
 
 NAME = "fitted"
@@ -75,6 +76,8 @@ def coefficients(path: str | None = None) -> dict:
     kernel = Kernel.from_arrays(d, "k")
     return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"], "hi": d["hi"],
             "edges": d["region_edges"], "errors": d["region_errors"],
+            # a file from before the Dn bands states one error per gap region
+            "dn_edges": d.get("dn_edges", np.empty(0)),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
             "scalar_names": names}
 
@@ -140,10 +143,47 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
         H_min = np.minimum(fg.asinh_to_gap(own["h_min"] + fg.gap_to_asinh(base_min, s0, c0),
                                            s0, c0), H.min(axis=1))
         share = np.clip(own["contact_share"], 0.0, 1.0)
-    region = np.searchsorted(fit["edges"], H_min / S[:, 0])
+    region = region_of(fit, H_min / S[:, 0], G[:, fg.GROUPS.index("Dn")])
     return {"H": H, "P": Y[:, n:2 * n], "H_min": H_min,
             "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region,
             "H_center": H_center, "share": share}
+
+
+def region_of(fit: dict, ratio, Dn) -> np.ndarray:
+    """The row of the stated-error table for a predicted smallest gap over sigma ``ratio``
+    and a bending group ``Dn``: the gap region (``fit["edges"]``) times the number of Dn
+    bands, plus the band (``fit["dn_edges"]``; none in a file from before them).
+
+    >>> fit = {"edges": np.array([1.5, 4.0]), "dn_edges": np.array([1.0, 100.0])}
+    >>> region_of(fit, np.array([0.5, 10.0, 10.0]), np.array([0.1, 0.1, 500.0])).tolist()
+    [0, 6, 8]
+    """
+    dn_edges = fit.get("dn_edges", np.empty(0))
+    return (np.searchsorted(fit["edges"], ratio) * (len(dn_edges) + 1)
+            + np.searchsorted(dn_edges, Dn))
+
+
+_REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
+           "flying (h_min > 4 sigma)")
+
+
+def region_name(fit: dict, region: int) -> str:
+    """Words for row ``region`` of the stated-error table (:func:`region_of`).
+
+    >>> fit = {"edges": np.array([1.5, 4.0]), "dn_edges": np.array([1.0, 100.0])}
+    >>> region_name(fit, 8)
+    'flying (h_min > 4 sigma), stiff web (bending group Dn > 100)'
+    """
+    dn_edges = fit.get("dn_edges", np.empty(0))
+    gap, band = divmod(int(region), len(dn_edges) + 1)
+    name = _REGION[gap] if len(fit["edges"]) == 2 else f"gap region {gap}"
+    if len(dn_edges) == 2:
+        name += (", flexible web (bending group Dn < {0:g})",
+                 ", bending group Dn {0:g}-{1:g}",
+                 ", stiff web (bending group Dn > {1:g})")[band].format(*dn_edges)
+    elif len(dn_edges):
+        name += f", Dn band {band}"
+    return name
 
 
 def _stacked(v: dict[str, np.ndarray]) -> SimpleNamespace:
@@ -306,14 +346,9 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
     return _timed(res, time.perf_counter() - t0)[0]
 
 
-_REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
-           "flying (h_min > 4 sigma)")
-
-
 def _basis(fit: dict, region: int) -> str:
-    name = _REGION[region] if len(fit["edges"]) == 2 else f"region {region}"
     return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "
-            f"{name}; {fit['info']}")
+            f"{region_name(fit, region)}; {fit['info']}")
 
 
 def solve(case: Case, options: FittedOptions | None = None, **values) -> Result:
