@@ -251,7 +251,9 @@ def extra_holdout(out_csv, n: int, *, seed: int = EXTRA_SEED, timeout: float | N
     share their design with the points the fit's variants were compared on
     (docs/fit.md), so their errors may be optimistic; these were never seen by any choice,
     and join them in stating the errors (:func:`webfem.studies.fit_build.build`'s
-    ``extra_csv``). Resumable and parallel as :func:`run`."""
+    ``extra_csv``). Resumable and parallel as :func:`run`; points that failed are solved
+    again on a re-run, as :func:`recheck`'s are (the shipped table's point 180, timed out
+    at 60 s on a loaded machine, answered when solved again)."""
     options = dict(FE2D_OPTIONS if options is None else options)
     _check_points(n)
     from .. import __version__
