@@ -31,7 +31,8 @@ from ..result import State
 from .refine import adapted_nodes
 
 __all__ = ["moved_nodes", "secant_factor", "extrapolation_weights", "mesh_key",
-           "continued_state", "predicted", "similar", "near", "planned_nodes", "start_info",
+           "continued_state", "predicted", "similar", "near", "refused_again", "planned_nodes",
+           "start_info",
            "MAX_SECANT", "MESH_SLACK"]
 
 #: The secant extrapolates at most this many previous steps ahead (a sweep's next step is
@@ -208,6 +209,23 @@ def near(c0: Case, c1: Case) -> bool:
     """
     s = _path([c0, c1])
     return s is not None and abs(s[1] - s[0]) <= NEAR_STEP
+
+
+def refused_again(restart: State, planned: np.ndarray) -> bool:
+    """Whether the mesh this case's predicted gap asks for (``planned``, its nodes along x)
+    is about the one the restart's error estimate refused: the restart's mesh was refined
+    by its estimate (``restart.refined``) and its coarser mesh (``restart.coarse``, the
+    refused one, moved along while the refined mesh is kept) has within
+    :data:`MESH_SLACK` as many nodes along x. Such a mesh is likely to be refused again, a
+    step away however long: :meth:`webfem.models.fe2d._Film._continued` keeps the refined
+    mesh then, as on a :func:`near` step. Why: on the base case's 24-point speed sweep
+    (0.5-40 m/s) the estimate refused the mesh planned at 22.6 m/s (9,097 unknowns,
+    h_min 1.02e-3 against 1e-3) and bisected it along x; planned again at 27.3 m/s (8,521)
+    it was refused and bisected again: 15 Newton steps and 8 factorisations there, where
+    on the refined mesh kept the point took 8 and 5 (the answers at most 6e-8 apart,
+    relative; stated errors 2e-5 to 1.6e-4)."""
+    return (restart.refined and restart.coarse is not None
+            and similar(np.size(restart.coarse[0]), np.size(planned)))
 
 
 def similar(n_moved: int, n_cold: int) -> bool:

@@ -472,7 +472,9 @@ class _Film(Discretisation):
         drift, and the previous point's may be twice as fine where its estimate bisected
         it) or, where the previous point's error estimate refined its mesh (``State.
         refined``, kept while the mesh is), while the step is short (:func:`continued.near`:
-        the mesh this case's gap asks for is then likely to be refined again), else on that
+        the mesh this case's gap asks for is then likely to be refined again) or while the
+        mesh this case's gap asks for is about the one that estimate refused
+        (:func:`continued.refused_again`), else on that
         planned mesh with the moved state carried over. None (a cold
         start) when the moved state does not fit its mesh or is not finite."""
         X, Z = moved
@@ -494,7 +496,8 @@ class _Film(Discretisation):
         kept = {"continued": note}
         info = continued.start_info()
         if (continued.similar(X.size, planned.size) and continued.similar(Z.size, Zc.size)) \
-                or (restart.refined and continued.near(restart.case, case)):
+                or (restart.refined and continued.near(restart.case, case)) \
+                or continued.refused_again(restart, planned):
             problem = on_moved
             kept["kept_refined"] = restart.refined
             kept["continued_from"] = (restart.case, restart.u)
