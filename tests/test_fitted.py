@@ -492,7 +492,8 @@ def test_the_read_out_is_the_fit_variables_inverse():
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     Y = fit["stack"](x)
     n = len(fg.NODES)
-    S, H_c = G[:, -1:], G[:, -1:] * np.log(G[:, fg.GROUPS.index("c")])[:, None]
+    S = G[:, fg.GROUPS.index("S")][:, None]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])[:, None]
     base, base_min = fg.baseline(G)
     H = fg.fit_to_gap(Y[:, :n] + fg.gap_to_fit(base, S, H_c), S, H_c)
     np.testing.assert_allclose(pr["H"], H, rtol=1e-12, atol=1e-12 * np.abs(H).max())
