@@ -42,7 +42,8 @@ from ..fem.scaling import FoilParameters
 from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
-           "baseline", "baseline_sigmas", "softplus", "gap_to_fit", "fit_to_gap", "gap_to_asinh", "asinh_to_gap",
+           "baseline", "baseline_sigmas", "softplus", "gap_to_fit", "fit_to_gap",
+           "gap_to_asinh", "asinh_to_gap",
            "outside", "physics_refusal", "group_array", "case_columns", "groups_of_columns",
            "COLUMNS"]
 
@@ -82,9 +83,9 @@ H0, EXIT = 0.643, 0.716
 
 
 def softplus(z):
-    """log(1 + e^z), as max(z, 0) + log1p(e^-|z|): the same to rounding as
-    ``np.logaddexp(0, z)``, whose loop is scalar (measured 6 times slower on this form's
-    vectorised exp and log1p)."""
+    """log(1 + e^z), as max(z, 0) + log1p(e^-|z|): ``np.logaddexp(0, z)`` to rounding, on
+    numpy's vectorised exp and log1p (logaddexp's loop is scalar: 0.42 against 0.06 us a
+    point on the 33 nodes)."""
     z = np.asarray(z, float)
     t = np.negative(np.abs(z))
     np.exp(t, out=t)
