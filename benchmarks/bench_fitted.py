@@ -6,9 +6,15 @@ evaluation speed, and its errors against fe2d on fresh points of another design.
     python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
     python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
     python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
+    python benchmarks/bench_fitted.py kernels [--store benchmarks/fit_campaign/campaign.csv]
 
 ``methods`` compares fitting methods inside the training set (three quarters fit, the
 fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
+
+``kernels`` builds the fit from a campaign with each radial function the one-pass stack
+evaluates (the shipped Matern-5/2, a Gaussian, a rational-quadratic), as ``webfem fit
+build --fit-only`` does, and gives each one's hold-out errors, a paired bootstrap of its
+change against the first's, and predict's speed, alternated.
 
 ``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
 a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
@@ -82,10 +88,12 @@ def speed(coefficients: str | None = None) -> None:
     G = np.repeat(fg.group_array(fg.groups_of(case)), 100_000, axis=0)
     G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
     raw = len(G) / best(lambda: fitted.predict(G, fit))
+    raw1 = len(G) / best(lambda: fitted.predict(G, fit, n_threads=1))
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     kernels = [fit["kernel"], *fit["scalars"]]
     if fit.get("stack") is not None:      # the kernels in one pass, as predict runs them
-        kernel = len(G) / best(lambda: fit["stack"](x))
+        b = getattr(fitted, "BLOCK", len(G))
+        kernel = len(G) / best(lambda: [fit["stack"](x[i:i + b]) for i in range(0, len(x), b)])
     else:
         kernel = len(G) / best(lambda: [k(x) for k in kernels])
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; fit: "
@@ -93,8 +101,10 @@ def speed(coefficients: str | None = None) -> None:
                       for k in kernels))
     print(f"one webfem.solve(model='fitted'):       {one * 1e3:8.3f} ms      (target <= 1 ms)")
     print(f"webfem.solve_many of 10,000 (results):  {many:8.3f} s       (target <= 1 s)")
-    print(f"fitted.predict (raw profile, 100,000):  {raw:8.3g} points/s (target >= 1e6)")
-    print(f"  of which the kernels alone:           {kernel:8.3g} points/s")
+    print(f"fitted.predict (raw profile, 100,000):  {raw:8.3g} points/s (target >= 1e6; "
+          f"{min(fitted.threads(), -(-len(G) // fitted.BLOCK))} threads)")
+    print(f"  on one thread:                        {raw1:8.3g} points/s")
+    print(f"  of which the kernels alone:           {kernel:8.3g} points/s (one thread)")
 
 
 def fresh(points: int, seed: int) -> None:
@@ -229,9 +239,69 @@ def methods(store: str) -> None:
             for q in ("h_center", "h_min", "mu", "contact_share")) + " |")
 
 
+def holdout_percentiles(npz: str) -> dict[str, np.ndarray]:
+    """Per hold-out row of a coefficients file, its fit's errors (as the build states them)."""
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.studies import fit_build as fb
+    fit = fitted.coefficients(npz)
+    data = np.load(npz)
+    rows = [{**{f"g_{g}": v for g, v in zip(fg.GROUPS, G)}, **dict(zip(fitted.QUANTITIES, V))}
+            for G, V in zip(data["holdout_groups"], data["holdout_values"])]
+    return fb.holdout_errors(rows, fit)
+
+
+def kernels(store: str) -> None:
+    import tempfile
+    from webfem import Case
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.studies import fit_build as fb
+    kinds = ("matern52", "gaussian", "cauchy")
+    errs, fits = {}, {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind in kinds:
+            out = f"{tmp}/{kind}.npz"
+            t0 = time.perf_counter()
+            fb.build(store, out, kind=kind)
+            errs[kind], fits[kind] = holdout_percentiles(out), fitted.coefficients(out)
+            print(f"{kind}: built in {time.perf_counter() - t0:.0f} s; hold-out 50 / 90 / 95 "
+                  "% / max")
+            for q in fitted.QUANTITIES:
+                print(f"  {q:<14}" + " / ".join(
+                    f"{v:.3g}" for v in np.percentile(errs[kind][q], [50, 90, 95, 100])))
+    rng = np.random.default_rng(0)
+    a = errs[kinds[0]]
+    idx = rng.integers(0, len(a["mu"]), (2000, len(a["mu"])))
+    for kind in kinds[1:]:
+        print(f"{kind} - {kinds[0]}: change and its paired bootstrap's 95 % interval")
+        for q in fitted.QUANTITIES:
+            A, B = a[q][idx], errs[kind][q][idx]
+            for name, f in (("median", np.median), ("95th", lambda v, axis=None:
+                                                      np.percentile(v, 95, axis=axis))):
+                d = f(B, axis=1) - f(A, axis=1)
+                print(f"  {q:<14} {name:<6} {f(errs[kind][q]) - f(a[q]):+.3g} "
+                      f"[{np.percentile(d, 2.5):+.3g}, {np.percentile(d, 97.5):+.3g}]")
+    G = np.repeat(fg.group_array(fg.groups_of(Case())), 100_000, axis=0)
+    G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
+    speed = {k: [] for k in kinds}
+    for _ in range(3):                   # alternated: the machine's load moves
+        for kind in kinds:
+            for n in (1, None):
+                t0 = time.perf_counter()
+                fitted.predict(G, fits[kind], n_threads=n)
+                speed[kind].append((n, len(G) / (time.perf_counter() - t0)))
+    for kind, v in speed.items():
+        one = [s for n, s in v if n == 1]
+        many = [s for n, s in v if n is None]
+        print(f"{kind}: predict {min(one):.3g}-{max(one):.3g} points/s on one thread, "
+              f"{min(many):.3g}-{max(many):.3g} on {fitted.threads()}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods"))
+    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods",
+                                     "kernels"))
     ap.add_argument("--store", default="out/fit/campaign.csv")
     ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
@@ -246,6 +316,9 @@ def main() -> None:
         maps(a.out)
     elif a.what == "methods":
         methods(a.store)
+    elif a.what == "kernels":
+        kernels(a.store if a.store != "out/fit/campaign.csv"
+                else "benchmarks/fit_campaign/campaign.csv")
     else:
         fresh(a.points or 40, a.seed)
 

@@ -491,3 +491,71 @@ def test_stated_errors_are_per_gap_region_and_bending_band():
     assert region % 3 == 2
     assert r["error_h_min"] == fit["errors"][region, 1]
     assert "stiff web (bending group Dn > 100)" in r["error_basis"]
+
+
+def test_many_points_are_answered_alone_whatever_the_threads_and_the_batch():
+    """predict shares blocks of points among threads: each point's answer is its own, the
+    same on one thread or two, in a batch of any size and alone (to rounding)."""
+    G = fc.design(2 * fitted.BLOCK + 37, seed=11)
+    one = fitted.predict(G, n_threads=1)
+    two = fitted.predict(G, n_threads=2)
+    for k, a in one.items():
+        if a is not None:
+            assert np.array_equal(a, two[k]), k
+    # a batch that cuts the blocks elsewhere, and points alone
+    part = fitted.predict(G[fitted.BLOCK - 5:], n_threads=2)
+    alone = [fitted.predict(G[i:i + 1]) for i in (0, fitted.BLOCK, len(G) - 1)]
+    for k in ("H", "P", "H_min", "s_min", "H_center", "share"):
+        np.testing.assert_allclose(part[k], one[k][fitted.BLOCK - 5:], rtol=1e-12, atol=1e-14)
+        for i, a in zip((0, fitted.BLOCK, len(G) - 1), alone):
+            np.testing.assert_allclose(a[k][0], one[k][i], rtol=1e-12, atol=1e-14)
+    assert np.array_equal(part["region"], one["region"][fitted.BLOCK - 5:])
+
+
+def test_the_read_out_is_the_fit_variables_inverse():
+    """predict's gap is the fit's variable over the baseline, inverted: H = fit_to_gap(Y +
+    gap_to_fit(baseline)) (the algebra predict shortcuts), and softplus is logaddexp."""
+    z = np.concatenate([np.linspace(-800, 800, 4001), [0.0, 1e-300, -1e-300]])
+    np.testing.assert_allclose(fg.softplus(z), np.logaddexp(0.0, z), rtol=1e-15, atol=0)
+    fit = fitted.coefficients()
+    G = fc.design(300, seed=12)
+    pr = fitted.predict(G, fit)
+    x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
+    Y = fit["stack"](x)
+    n = len(fg.NODES)
+    S = G[:, fg.GROUPS.index("S")][:, None]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])[:, None]
+    base, base_min = fg.baseline(G)
+    H = fg.fit_to_gap(Y[:, :n] + fg.gap_to_fit(base, S, H_c), S, H_c)
+    np.testing.assert_allclose(pr["H"], H, rtol=1e-12, atol=1e-12 * np.abs(H).max())
+    centre = fg.asinh_to_gap(Y[:, 2 * n + 2] + fg.gap_to_asinh(base[:, n // 2], S[:, 0],
+                                                                  H_c[:, 0]), S[:, 0], H_c[:, 0])
+    np.testing.assert_allclose(pr["H_center"], centre, rtol=1e-12,
+                               atol=1e-12 * np.abs(centre).max())
+
+
+@pytest.mark.parametrize("kind", ["gaussian", "cauchy"])
+def test_other_kernels_stack_and_fit_as_the_generic_formula(kind):
+    """The build's other radial functions: fitted by the same machinery, and the one-pass
+    stack evaluates them as their formula does."""
+    from webfem.models.fit_kernel import KINDS, Stack
+    from webfem.studies import fit_build as fb
+    rng = np.random.default_rng(6)
+    x = rng.uniform(size=(80, 3))
+    y = np.column_stack([np.sin(3 * x[:, 0]) * x[:, 1], np.cos(2 * x[:, 2])])
+    k = fb.fit_kernel(x, y, trend=False, restarts=0, centres=40, kind=kind)
+    s = fb.fit_kernel(x, y[:, :1], trend=False, restarts=0, kind=kind)
+    assert k.kind == s.kind == kind and len(k.centres) == 40
+    xt = rng.uniform(size=(300, 3))
+    generic = np.column_stack([
+        KINDS[kind](xt, q.centres, q.scales) @ q.weights * q.y_std + q.y_mean for q in (k, s)])
+    np.testing.assert_allclose(k(xt), generic[:, :2], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(Stack([k, s])(xt), generic, rtol=1e-10, atol=1e-10)
+    fast = Stack([k, s], radial=np.float32)(xt)
+    bound = 1e-6 * sum(np.abs(q.weights * q.y_std).sum(axis=0).max() for q in (k, s))
+    np.testing.assert_allclose(fast, generic, rtol=0, atol=bound)
+    # a smooth function, interpolated: the fit means something
+    truth = np.column_stack([np.sin(3 * xt[:, 0]) * xt[:, 1], np.cos(2 * xt[:, 2])])
+    assert np.abs(k(xt) - truth).max() < 0.1
+    with pytest.raises(ValueError, match="one kind"):
+        Stack([k, fb.fit_kernel(x, y, trend=False, restarts=0)])

@@ -35,12 +35,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..models import fit_groups as fg
-from ..models.fit_kernel import Kernel, blas_one_thread, matern52, thin_plate
+from ..models.fit_kernel import KINDS, Kernel, blas_one_thread, thin_plate
 from ..models.readout import error_scale
 
 __all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select_centres",
            "sor_weights", "holdout_errors", "REGION_EDGES", "DN_EDGES", "QUANTILE", "SCALARS",
-           "CENTRES"]
+           "CENTRES", "KIND"]
 
 #: Regions of the predicted H_min / S: resting (< 1.5), landing, flying (> 4).
 REGION_EDGES = np.array([1.5, 4.0])
@@ -82,6 +82,11 @@ HYPER_POINTS = 450
 #: within noise. A campaign with fewer training points keeps them all; ``webfem fit
 #: build`` reports the full fit's hold-out errors beside.
 CENTRES = (200, 400, 300)
+#: The kernels' radial function (:data:`webfem.models.fit_kernel.KINDS`; every function
+#: below takes ``kind``, default this). The Gaussian and the rational-quadratic (cauchy)
+#: evaluate 1.3 times as fast but measured a little worse on the hold-out set (medians
+#: 10-25 % higher in the gaps, within the bootstrap's noise; docs/fit.md, "Speed").
+KIND = "matern52"
 
 
 def targets(rows) -> np.ndarray:
@@ -120,15 +125,16 @@ def scalar_targets(rows) -> np.ndarray:
         [r["contact_share"] for r in rows]])
 
 
-def _loo(x, y, log_scales, log_nugget):
+def _loo(x, y, log_scales, log_nugget, kind=None):
     """Leave-one-out residuals (closed form) of the GP mean with these parameters."""
-    K = matern52(x, x, np.exp(log_scales)) + np.exp(log_nugget) * np.eye(len(x))
+    K = KINDS[kind or KIND](x, x, np.exp(log_scales)) + np.exp(log_nugget) * np.eye(len(x))
     Ki = np.linalg.inv(K)
     return (Ki @ y) / np.diag(Ki)[:, None]
 
 
 def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: int = 2,
-                    seed: int = 0, hyper_points: int | None = None) -> tuple[np.ndarray, float]:
+                    seed: int = 0, hyper_points: int | None = None,
+                    kind: str | None = None) -> tuple[np.ndarray, float]:
     """The length scales and nugget of the kernel minimising the weighted leave-one-out
     error (closed form) of the residuals ``res`` (n, k) at unit-box points ``x``, on
     ``hyper_points`` of them (a fixed draw by ``seed``; each leave-one-out costs an n x n
@@ -143,7 +149,7 @@ def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: i
 
     def cost(theta):
         try:
-            e = _loo(x[sub], res[sub], theta[:m], theta[m])
+            e = _loo(x[sub], res[sub], theta[:m], theta[m], kind)
         except np.linalg.LinAlgError:
             return 1e10
         return float(np.mean(e * e * w))
@@ -161,14 +167,15 @@ def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: i
     return np.exp(best.x[:m]), float(np.exp(best.x[m]))
 
 
-def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
+def select_centres(x: np.ndarray, scales: np.ndarray, m: int,
+                   kind: str | None = None) -> np.ndarray:
     """Indices of ``m`` rows of ``x`` chosen as centres by pivoted Cholesky on the kernel
     matrix: each next centre is the point the chosen ones' span predicts worst (largest
     remaining variance), so they spread evenly in the kernel's own metric; deterministic.
     Fewer where the chosen ones already span every point to rounding (repeated points)."""
     n = len(x)
     m = min(m, n)
-    K = matern52(x, x, scales)
+    K = KINDS[kind or KIND](x, x, scales)
     d = np.diag(K).copy()
     d0 = float(d.max())
     L = np.zeros((m, n))
@@ -185,11 +192,11 @@ def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
 
 
 def sor_weights(x: np.ndarray, res: np.ndarray, scales: np.ndarray, nugget: float,
-                idx: np.ndarray) -> np.ndarray:
+                idx: np.ndarray, kind: str | None = None) -> np.ndarray:
     """The subset-of-regressors weights at the centres ``x[idx]``, fitted to all points:
     min |K_nm a - res|^2 + nugget a' K_mm a (the GP mean's weights when idx is every
     point), by least squares on the stacked system (K_mm's Cholesky factor)."""
-    Knm = matern52(x, x[idx], scales)
+    Knm = KINDS[kind or KIND](x, x[idx], scales)
     Kmm = Knm[idx]
     L = np.linalg.cholesky(Kmm + 1e-10 * np.eye(len(idx)))
     A = np.vstack([Knm, np.sqrt(nugget) * L.T])
@@ -206,14 +213,16 @@ def _standardised(y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
                seed: int = 0, trend: bool = True, hyper_points: int | None = None,
-               centres: int | None = None, hyper=None) -> Kernel:
+               centres: int | None = None, hyper=None, kind: str | None = None) -> Kernel:
     """The interpolant of outputs ``y`` (n, k) at unit-box points ``x`` (n, m): linear trend
     by least squares, then the kernel's length scales and nugget minimising the weighted
     leave-one-out error of the trend's residuals (:func:`hyperparameters`; ``hyper``:
     given instead, as (scales, nugget)). ``hyper_points``: choose them on that many of the
     points, then solve for the weights on all of them. ``centres``: keep that many
     centres (:func:`select_centres`), their weights fitted to all the points
-    (:func:`sor_weights`); None keeps every point (the GP mean)."""
+    (:func:`sor_weights`); None keeps every point (the GP mean). ``kind``: the radial
+    function (:data:`KIND` by default)."""
+    kind = kind or KIND
     ys, y_mean, y_std = _standardised(y)
     A = np.hstack([np.ones((len(x), 1)), x])
     if trend:
@@ -222,15 +231,16 @@ def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
         trend = np.zeros((A.shape[1], ys.shape[1]))
     res = ys - A @ trend
     scales, nugget = hyper if hyper is not None else hyperparameters(
-        x, res, weights=weights, restarts=restarts, seed=seed, hyper_points=hyper_points)
+        x, res, weights=weights, restarts=restarts, seed=seed, hyper_points=hyper_points,
+        kind=kind)
     if centres is None or centres >= len(x):
-        K = matern52(x, x, scales) + nugget * np.eye(len(x))
+        K = KINDS[kind](x, x, scales) + nugget * np.eye(len(x))
         return Kernel(centres=x, scales=scales, trend=trend, weights=np.linalg.solve(K, res),
-                      y_mean=y_mean, y_std=y_std)
-    idx = select_centres(x, scales, centres)
+                      y_mean=y_mean, y_std=y_std, kind=kind)
+    idx = select_centres(x, scales, centres, kind)
     return Kernel(centres=x[idx], scales=scales, trend=trend,
-                  weights=sor_weights(x, res, scales, nugget, idx), y_mean=y_mean,
-                  y_std=y_std)
+                  weights=sor_weights(x, res, scales, nugget, idx, kind), y_mean=y_mean,
+                  y_std=y_std, kind=kind)
 
 
 def fit_thin_plate(x: np.ndarray, y: np.ndarray, scales: np.ndarray,
@@ -298,14 +308,15 @@ def region_errors(errs: dict,
 
 
 def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
-          extra_csv=None) -> dict:
+          extra_csv=None, kind: str | None = None) -> dict:
     """Fit the converged training rows of ``campaign_csv``, state the errors from its
     hold-out rows (or from the converged rows of ``holdout_csv``: the same points solved
     again with the current physics, :func:`webfem.studies.fit_campaign.recheck`), joined by
     the converged rows of ``extra_csv`` (points of another design, all held out:
     :func:`webfem.studies.fit_campaign.extra_holdout`), and write the coefficients to
     ``out_npz``; returns a report (sizes, the hold-out error distribution per quantity, the
-    stated table)."""
+    stated table). ``kind``: the kernels' radial function (:data:`KIND` by default; other
+    kinds for comparisons)."""
     import datetime
     from pathlib import Path
     from .. import __version__
@@ -346,12 +357,12 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
     outputs = [y] + [ys[:, list(cols)] for cols in SCALAR_KERNELS]
     with blas_one_thread():
         hyper = [hyperparameters(x, _standardised(t)[0], restarts=restarts,
-                                 hyper_points=HYPER_POINTS) for t in outputs]
-        kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m)
+                                 hyper_points=HYPER_POINTS, kind=kind) for t in outputs]
+        kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m, kind=kind)
                             for t, h, m in zip(outputs, hyper, CENTRES))
         # the full fit (every training point a centre) on the same length scales: the
         # report states what the compression costs on this campaign's hold-out set
-        full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h)
+        full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h, kind=kind)
                                for t, h in zip(outputs, hyper))
     span = Case().span_used
     ends = f"wrap.ends = span, {span:g} m" if span else "wrap.ends = held"
