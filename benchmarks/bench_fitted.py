@@ -36,20 +36,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 def coverage(points: int) -> None:
     import envelope_sample as es
-    from webfem.errors import InputError
     from webfem.models import fit_groups as fg
     possible = inside = 0
     why: dict[str, int] = {}
-    for i in range(points):
-        p = es.draw(i)
-        if p["grooved"]:
-            continue
-        try:
-            case = es.case_of(p)
-        except InputError:          # T_eff <= 0: no tension holds the web
-            continue
-        if case.h_scale >= case.roller.radius / 100:   # not a thin film
-            continue
+    for case in es.smooth_possible(points):
         possible += 1
         text = fg.outside(case)
         if text is None:

@@ -31,17 +31,9 @@ def envelope(points: int) -> None:
     import numpy as np
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import envelope_sample as es
-    from webfem.errors import InputError
     rows = []
-    for i in range(points):
-        p = es.draw(i)
-        if p["grooved"]:
-            continue
-        try:
-            case = es.case_of(p)
-        except InputError:                    # T_eff <= 0
-            continue
-        if case.h_scale >= case.roller.radius / 100 or fg.outside(case) is not None:
+    for case in es.smooth_possible(points):
+        if fg.outside(case) is not None:
             continue
         g = fg.groups_of(case)
         ref = fc.case_of_groups(g)
