@@ -3,8 +3,9 @@
 mu(U_r) rises from the boundary-lubrication value at low speed, peaks, and falls as air lifts
 the web (the paper's Stribeck-like curve). The traction-loss speed is where it falls through
 ``mu_min`` after the peak: found on a logarithmic scan of roller speeds (walked with
-:func:`webfem.api.solve_along`, each FE point started from the previous one) and refined by
-Brent's method inside the bracketing interval.
+:func:`webfem.api.solve_along`, each FE point started from the previous one, up to the first
+speed where mu is below ``mu_min`` after having reached it) and refined by Brent's method
+inside the bracketing interval.
 
 Examples
 --------
@@ -44,8 +45,11 @@ class TractionLoss:
     """The answer of :func:`traction_loss_speed`.
 
     ``speed`` [m/s] is None when mu never reaches ``mu_min`` in the scanned range or never
-    falls below it; ``bracket`` the scan interval holding the crossing; ``evaluations`` the
-    number of solves; ``message`` says what was found. ``out["speed"]`` reads a field too.
+    falls below it; ``bracket`` the scan interval holding the crossing; ``mu_peak`` and
+    ``speed_peak`` the largest mu of the scan's speeds and where; ``scanned`` the lowest and
+    highest scan speed solved (the scan stops at its first crossing unless asked for the
+    full range); ``evaluations`` the number of solves; ``message`` says what was found (and
+    where the scan stopped). ``out["speed"]`` reads a field too.
     ``model_used``: the model that answered at the speed found (else at the peak): auto's
     choice there, or ``model`` itself; ``models_used``: every model that answered a solve
     of the search, in the order first used.
@@ -61,6 +65,7 @@ class TractionLoss:
     message: str
     model_used: str | None = None
     models_used: tuple[str, ...] = ()
+    scanned: tuple[float, float] | None = None
 
     def answered(self) -> str:
         """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
@@ -96,54 +101,132 @@ def _used(result) -> str:
     return result["model_used"] or result["model"]
 
 
-def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1):
-    """Results at ``speeds`` in order with continuation; a failed solve is an error naming
-    its speed (a scan with a hole could miss the crossing). ``workers`` > 1: in that many
-    local processes, three runs of consecutive speeds each, each run with continuation (a
-    cold solve ends where a continued one does, so the values are the serial scan's)."""
+#: Models that answer a point in about a millisecond or less: a worker process would cost
+#: more than it saves, so their scans stay in this process whatever ``workers`` says.
+_AT_ONCE = ("closed-form", "fitted")
+
+
+def _crossing(mu, mu_min: float) -> int | None:
+    """Index of the first value below ``mu_min`` after one at or above it (NaN is neither),
+    or None."""
+    reached = False
+    for i, m in enumerate(mu):
+        if m >= mu_min:
+            reached = True
+        elif reached and m < mu_min:
+            return i
+    return None
+
+
+def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1,
+          stop: float | None = None):
+    """Results at ``speeds`` in order with continuation, and the number of solves made; a
+    failed solve is an error naming its speed (a scan with a hole could miss the crossing).
+    ``stop``: end the walk at the first speed where mu is below ``stop`` after having
+    reached it (:func:`_crossing`); the results then end there. ``workers`` > 1:
+    :func:`_scan_in_processes` (the same results, to rounding)."""
+    if workers > 1 and len(speeds) > 2 and model not in _AT_ONCE:
+        return _scan_in_processes(case, speeds, model, opts, workers, stop)
+    out, err = _walk(case, speeds, model, opts, initial, stop)
+    if err is not None:
+        raise err
+    return out, len(out)
+
+
+def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
+          stop: float | None = None):
+    """:func:`_scan`'s serial walk: ``(results, None)``, or the results before a solve that
+    raised and its error (a ConvergenceError naming its speed): returned, so a worker sends
+    it back with the results before it."""
     cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
-    if workers > 1 and len(cases) > 2 and model != "closed-form":
-        return _scan_in_processes(cases, speeds, model, opts, workers)
-    out = []
+    out: list = []
     try:
         for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):
             out.append(res)
+            if stop is not None and _crossing([r["mu"] for r in out], stop) is not None:
+                break
     except ConvergenceError as err:
         u = float(speeds[len(out)])
-        raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = {u:.4g} "
-                               f"m/s did not converge ({err})", err.result,
-                               err.history) from None
-    return out
+        return out, ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
+                                     f"{u:.4g} m/s did not converge ({err})", err.result,
+                                     err.history)
+    except Exception as err:   # noqa: BLE001 - the caller raises it where the scan needs it
+        return out, err
+    return out, None
 
 
-def _scan_in_processes(cases, speeds, model: str, opts: Options, workers: int):
-    """:func:`_scan` on ``workers`` processes: three runs of consecutive speeds per worker
-    (the low speeds cost most), each solved with continuation; results in speed order."""
-    from .sweeps.workers import PointError, Processes, solve_chunk
+def _run_in_worker(case: Case, speeds, model: str, opts: Options, stop):
+    """:func:`_walk` in a worker process, its results slim."""
+    out, err = _walk(case, speeds, model, opts, stop=stop)
+    return [r.slim() for r in out], err
 
-    parts = min(3 * workers, len(cases))
-    bounds = [round(i * len(cases) / parts) for i in range(parts + 1)]
-    runs = [(i, (cases[a:b], model, opts)) for i, (a, b) in enumerate(zip(bounds, bounds[1:]))]
-    got: dict = {}
-    pool = Processes(min(workers, parts))
+
+#: Share of a two-process scan's speeds walked by the calling process: the low ones, which
+#: cost more per point (the web rests on its asperities; 0.12-0.37 s against 0.04-0.26 s
+#: above 5 m/s for fe2d on the base case), while the other process pays a cold start. The
+#: base case's fe2d search (24 speeds, crossing at 23.4 m/s) on 2 free cores: 0.35, 0.375
+#: and 0.4 took 2.13-2.23, 2.10-2.15 and 2.24-2.39 s.
+LOW_SHARE = 0.375
+
+
+def _scan_in_processes(case: Case, speeds, model: str, opts: Options, workers: int,
+                       stop: float | None = None):
+    """:func:`_scan` in ``workers`` runs of consecutive speeds, each with continuation and
+    each stopping as ``stop`` asks: this process walks the lowest run while worker
+    processes walk the others (each from a cold start: a cold solve ends where a continued
+    one does). A run ends early only at a crossing of its own, so the scan's first crossing
+    comes before any gap: the results are the serial scan's (``stop`` included), and the
+    count of solves includes those made past it."""
+    from threadpoolctl import threadpool_limits
+
+    from .sweeps.workers import Processes
+
+    n = len(speeds)
+    first = max(1, round((LOW_SHARE if workers == 2 else 1.0 / workers) * n))
+    cuts = [first + round(i * (n - first) / (workers - 1)) for i in range(workers)]
+    runs = [(a, b) for a, b in zip(cuts, cuts[1:]) if b > a]
+    pool = Processes(len(runs))
     try:
-        pool.run(runs, got.__setitem__, task=solve_chunk)
+        futures = [pool.pool.submit(_run_in_worker, case, speeds[a:b], model, opts, stop)
+                   for a, b in runs]
+        with threadpool_limits(limits=1):    # one BLAS thread here too, as in the workers
+            low, err = _walk(case, speeds[:first], model, opts, stop=stop)
+        got = [f.result() for f in futures]
+    except BaseException:
+        pool.stop()
+        raise
     finally:
         pool.close()
-    out = [res for i in range(parts) for res in got[i]]
-    for u, res in zip(speeds, out):
-        if isinstance(res, PointError) or not res["converged"]:
-            why = res.message if isinstance(res, PointError) else res["solver_message"]
-            raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
-                                   f"{float(u):.4g} m/s did not converge ({why})")
-    return out
+    solved = len(low) + sum(len(res) for res, _ in got)
+    # the runs end to end up to the first failure; where a run ended early at a crossing of
+    # its own, the next one's results follow a gap, but the crossing found below comes
+    # before it
+    out, why = low, err
+    for res, failed in got:
+        if why is not None:
+            break
+        out = out + res
+        why = failed
+    j = None if stop is None else _crossing([r["mu"] for r in out], stop)
+    if j is not None:
+        return out[:j + 1], solved
+    if why is not None:    # before any crossing: the serial scan would have raised it too
+        raise why
+    return out, solved
 
 
 def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                         speed_range=SPEED_RANGE, n_scan: int = 24, xtol: float = 1e-3,
                         options: Options | dict | None = None, workers: int = 1,
-                        **values) -> TractionLoss:
+                        full_scan: bool = False, **values) -> TractionLoss:
     """Roller speed [m/s] at which the wrap-averaged mu falls below ``mu_min`` (after its peak).
+
+    The scan walks up the speeds and stops at the first one where mu is below ``mu_min``
+    after having reached it (the speeds above cannot move that crossing); the root find
+    refines it between that speed and the one before. ``full_scan`` solves every speed of
+    the range: the peak is then the whole range's and the crossing the first after it (the
+    same answer unless mu rises above ``mu_min`` again at a higher speed, and higher than
+    before).
 
     Parameters
     ----------
@@ -163,10 +246,14 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         The model's options (an options object, a dict or keywords).
     workers : int
         Local processes for the scan (1 to 256; default 1): more than one runs the scan in
-        runs of consecutive speeds, each with continuation; the root find that follows is
-        serial. The scan's values are the serial scan's (a cold solve ends where a
-        continued one does: within 6e-11 in mu on the base case's fe2d scan, on the same
-        meshes), so the speed agrees within the root find's ``xtol`` (3e-7 relative there).
+        runs of consecutive speeds, each with continuation and each stopping at a crossing
+        of its own; this process walks the lowest speeds (:data:`LOW_SHARE` of them for
+        two), each worker the next run from a cold start; the root find that follows is
+        serial. A cold start may solve on another mesh than the continued one, so the
+        values agree within the model's stated errors: on the base case's fe2d search
+        mu_peak 3.5e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
+    full_scan : bool
+        Solve every speed of the range, not stopping at the first crossing.
 
     Returns
     -------
@@ -202,13 +289,20 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                     " m/s)")
         lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
-    results = _scan(case, speeds, model, opts, workers=workers)
+    results, solved = _scan(case, speeds, model, opts, workers=workers,
+                            stop=None if full_scan else mu_min)
+    # a stopped scan's results end at its first crossing: the search below finds it again
+    # (every speed between mu's first reaching mu_min and it is at or above mu_min)
     mu = np.array([r["mu"] for r in results], float)
     i_peak = int(np.nanargmax(mu))
     used = list(dict.fromkeys(_used(r) for r in results))
     found = dict(model=model, mu_min=float(mu_min), mu_peak=float(mu[i_peak]),
-                 speed_peak=float(speeds[i_peak]), evaluations=n_scan, bracket=None,
-                 speed=None, model_used=_used(results[i_peak]), models_used=tuple(used))
+                 speed_peak=float(speeds[i_peak]), evaluations=solved, bracket=None,
+                 speed=None, model_used=_used(results[i_peak]), models_used=tuple(used),
+                 scanned=(float(speeds[0]), float(speeds[len(results) - 1])))
+    if len(results) < n_scan:
+        note = (f" (the scan stopped at {speeds[len(results) - 1]:.4g} m/s, its first speed "
+                f"below it){note}")
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
             f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
@@ -227,7 +321,7 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
             return cache[u]["mu"] - mu_min
         # each evaluation starts from the nearest speed solved so far
         nearest = cache[min(cache, key=lambda v: abs(v - u))]
-        cache[u] = _scan(case, [u], model, opts, initial=nearest)[0]
+        cache[u] = _scan(case, [u], model, opts, initial=nearest)[0][0]
         found["evaluations"] += 1
         return cache[u]["mu"] - mu_min
 
