@@ -325,16 +325,17 @@ def test_traction_loss_says_which_model_answered(capsys):
 def test_the_root_find_solves_no_speed_twice(monkeypatch):
     """Brent's first evaluations are the bracket's ends, the scan's own answers: read, not
     solved again; ``evaluations`` counts the solves made."""
+    import webfem.loss_scan as ls
     import webfem.traction as tl
 
     speeds = []
-    along = tl.solve_along
+    along = ls.solve_along
 
     def recorded(cases, *args, **kwargs):
         for res in along(cases, *args, **kwargs):
             speeds.append(res.case.roller.speed)
             yield res
-    monkeypatch.setattr(tl, "solve_along", recorded)
+    monkeypatch.setattr(ls, "solve_along", recorded)
     out = tl.traction_loss_speed(Case(), 0.1, "closed-form")
     assert len(speeds) == len(set(speeds)) == out.evaluations
     assert out.bracket[0] < out.speed < out.bracket[1]
@@ -380,18 +381,25 @@ def _two_humps(u):
 FAIL_ABOVE = {"speed": 250.0}
 
 
+#: The roller speeds the fake solve of ``two_humps`` answered in this process.
+SOLVED_HERE: list = []
+
+
 @pytest.fixture
 def two_humps(monkeypatch):
+    import webfem.loss_scan as ls
     import webfem.traction as tl
 
     def along(cases, *args, **kwargs):
         for c in cases:
             if c.roller.speed > FAIL_ABOVE["speed"]:
                 raise webfem.errors.ConvergenceError("no answer up there")
+            SOLVED_HERE.append(c.roller.speed)
             yield _Fake(c, _two_humps(c.roller.speed))
-    monkeypatch.setattr(tl, "solve_along", along)
-    monkeypatch.setattr(tl, "LOW_SHARE", 0.375)
+    monkeypatch.setattr(ls, "solve_along", along)
+    monkeypatch.setattr(ls, "LOW_SHARE", 0.375)
     monkeypatch.setitem(FAIL_ABOVE, "speed", 250.0)
+    SOLVED_HERE.clear()
     return tl
 
 
@@ -421,6 +429,20 @@ def test_a_scan_in_two_processes_is_the_serial_one(two_humps):
     for key in ("speed", "mu_peak", "speed_peak", "bracket", "scanned"):
         assert both[key] == serial[key], key
     assert both.evaluations >= serial.evaluations   # the worker's run past the crossing
+    # this process walks 2-6.3 m/s, all above 0.1; the worker 8.0 (above) and 10.0 (below),
+    # then refines that crossing: the scan's first, so this process solves nothing more
+    SOLVED_HERE.clear()
+    again = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", workers=2, **kw)
+    assert SOLVED_HERE == pytest.approx(np.geomspace(2.0, 80.0, 17)[:6], rel=1e-15)
+    assert again.speed == serial.speed and again.evaluations == serial.evaluations
+    # mu_min 0.15: the first crossing (4.5 m/s) is this process's, which refines it; the
+    # worker refined the second one (about 34 m/s) in vain: its solves count
+    serial = two_humps.traction_loss_speed(Case(), 0.15, "fe1d", **kw)
+    SOLVED_HERE.clear()
+    both = two_humps.traction_loss_speed(Case(), 0.15, "fe1d", workers=2, **kw)
+    assert both.speed == serial.speed == pytest.approx(2.0 * 5.0 ** 0.5, rel=1e-3)
+    assert any(3.99 < u < 5.0 for u in SOLVED_HERE)
+    assert both.evaluations > serial.evaluations
     # this process walks 2-9.4 m/s, all above 0.1; the worker 12.8 m/s (below), 17.4,
     # 23.7 (above) and fails at 32.3: past the first crossing, which the serial scan ends at
     FAIL_ABOVE["speed"] = 30.0

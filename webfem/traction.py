@@ -5,7 +5,7 @@ the web (the paper's Stribeck-like curve). The traction-loss speed is where it f
 ``mu_min`` after the peak: found on a logarithmic scan of roller speeds (walked with
 :func:`webfem.api.solve_along`, each FE point started from the previous one, up to the first
 speed where mu is below ``mu_min`` after having reached it) and refined by Brent's method
-inside the bracketing interval.
+inside the bracketing interval (the solves: :mod:`webfem.loss_scan`).
 
 Examples
 --------
@@ -22,11 +22,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .api import solve_along
 from .case import Case
-from .errors import ConvergenceError, InputError
+from .errors import InputError
+from .loss_scan import refine, scan
 from .models.options import Options
 from .models.registry import make_options, model_spec
 
@@ -101,120 +101,6 @@ def _used(result) -> str:
     return result["model_used"] or result["model"]
 
 
-#: Models that answer a point in about a millisecond or less: a worker process would cost
-#: more than it saves, so their scans stay in this process whatever ``workers`` says.
-_AT_ONCE = ("closed-form", "fitted")
-
-
-def _crossing(mu, mu_min: float) -> int | None:
-    """Index of the first value below ``mu_min`` after one at or above it (NaN is neither),
-    or None."""
-    reached = False
-    for i, m in enumerate(mu):
-        if m >= mu_min:
-            reached = True
-        elif reached and m < mu_min:
-            return i
-    return None
-
-
-def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1,
-          stop: float | None = None):
-    """Results at ``speeds`` in order with continuation, and the number of solves made; a
-    failed solve is an error naming its speed (a scan with a hole could miss the crossing).
-    ``stop``: end the walk at the first speed where mu is below ``stop`` after having
-    reached it (:func:`_crossing`); the results then end there. ``workers`` > 1:
-    :func:`_scan_in_processes` (the same results, to rounding)."""
-    if workers > 1 and len(speeds) > 2 and model not in _AT_ONCE:
-        return _scan_in_processes(case, speeds, model, opts, workers, stop)
-    out, err = _walk(case, speeds, model, opts, initial, stop)
-    if err is not None:
-        raise err
-    return out, len(out)
-
-
-def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
-          stop: float | None = None):
-    """:func:`_scan`'s serial walk: ``(results, None)``, or the results before a solve that
-    raised and its error (a ConvergenceError naming its speed): returned, so a worker sends
-    it back with the results before it."""
-    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
-    out: list = []
-    try:
-        for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):
-            out.append(res)
-            if stop is not None and _crossing([r["mu"] for r in out], stop) is not None:
-                break
-    except ConvergenceError as err:
-        u = float(speeds[len(out)])
-        return out, ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
-                                     f"{u:.4g} m/s did not converge ({err})", err.result,
-                                     err.history)
-    except Exception as err:   # noqa: BLE001 - the caller raises it where the scan needs it
-        return out, err
-    return out, None
-
-
-def _run_in_worker(case: Case, speeds, model: str, opts: Options, stop):
-    """:func:`_walk` in a worker process, its results slim."""
-    out, err = _walk(case, speeds, model, opts, stop=stop)
-    return [r.slim() for r in out], err
-
-
-#: Share of a two-process scan's speeds walked by the calling process: the low ones, which
-#: cost more per point (the web rests on its asperities; 0.12-0.37 s against 0.04-0.26 s
-#: above 5 m/s for fe2d on the base case), while the other process pays a cold start. The
-#: base case's fe2d search (24 speeds, crossing at 23.4 m/s) on 2 free cores: 0.35, 0.375
-#: and 0.4 took 2.13-2.23, 2.10-2.15 and 2.24-2.39 s.
-LOW_SHARE = 0.375
-
-
-def _scan_in_processes(case: Case, speeds, model: str, opts: Options, workers: int,
-                       stop: float | None = None):
-    """:func:`_scan` in ``workers`` runs of consecutive speeds, each with continuation and
-    each stopping as ``stop`` asks: this process walks the lowest run while worker
-    processes walk the others (each from a cold start: a cold solve ends where a continued
-    one does). A run ends early only at a crossing of its own, so the scan's first crossing
-    comes before any gap: the results are the serial scan's (``stop`` included), and the
-    count of solves includes those made past it."""
-    from threadpoolctl import threadpool_limits
-
-    from .sweeps.workers import Processes
-
-    n = len(speeds)
-    first = max(1, round((LOW_SHARE if workers == 2 else 1.0 / workers) * n))
-    cuts = [first + round(i * (n - first) / (workers - 1)) for i in range(workers)]
-    runs = [(a, b) for a, b in zip(cuts, cuts[1:]) if b > a]
-    pool = Processes(len(runs))
-    try:
-        futures = [pool.pool.submit(_run_in_worker, case, speeds[a:b], model, opts, stop)
-                   for a, b in runs]
-        with threadpool_limits(limits=1):    # one BLAS thread here too, as in the workers
-            low, err = _walk(case, speeds[:first], model, opts, stop=stop)
-        got = [f.result() for f in futures]
-    except BaseException:
-        pool.stop()
-        raise
-    finally:
-        pool.close()
-    solved = len(low) + sum(len(res) for res, _ in got)
-    # the runs end to end up to the first failure; where a run ended early at a crossing of
-    # its own, the next one's results follow a gap, but the crossing found below comes
-    # before it
-    out, why = low, err
-    for res, failed in got:
-        if why is not None:
-            break
-        out = out + res
-        why = failed
-    j = None if stop is None else _crossing([r["mu"] for r in out], stop)
-    if j is not None:
-        return out[:j + 1], solved
-    if why is not None:    # before any crossing: the serial scan would have raised it too
-        raise why
-    return out, solved
-
-
 def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                         speed_range=SPEED_RANGE, n_scan: int = 24, xtol: float = 1e-3,
                         options: Options | dict | None = None, workers: int = 1,
@@ -247,9 +133,10 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     workers : int
         Local processes for the scan (1 to 256; default 1): more than one runs the scan in
         runs of consecutive speeds, each with continuation and each stopping at a crossing
-        of its own; this process walks the lowest speeds (:data:`LOW_SHARE` of them for
-        two), each worker the next run from a cold start; the root find that follows is
-        serial. A cold start may solve on another mesh than the continued one, so the
+        of its own; this process walks the lowest speeds
+        (:data:`webfem.loss_scan.LOW_SHARE` of them for two), each worker the next run from
+        a cold start and refines its crossing at once (used where it is the scan's first).
+        A cold start may solve on another mesh than the continued one, so the
         values agree within the model's stated errors: on the base case's fe2d search
         mu_peak 3.5e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
     full_scan : bool
@@ -289,8 +176,8 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                     " m/s)")
         lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
-    results, solved = _scan(case, speeds, model, opts, workers=workers,
-                            stop=None if full_scan else mu_min)
+    results, solved, refined = scan(case, speeds, model, opts, workers=workers,
+                                    stop=None if full_scan else mu_min, xtol=xtol)
     # a stopped scan's results end at its first crossing: the search below finds it again
     # (every speed between mu's first reaching mu_min and it is at or above mu_min)
     mu = np.array([r["mu"] for r in results], float)
@@ -312,20 +199,12 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s{note}")
     j = i_peak + int(after[0])
     a, b = float(speeds[j - 1]), float(speeds[j])
-    # the bracket's ends are the scan's own answers: Brent's first two evaluations read
-    # them (solving them again cost 0.6 s of the base case's 6-9 s fe2d search)
-    cache = {a: results[j - 1], b: results[j]}
-
-    def f(u):
-        if u in cache:
-            return cache[u]["mu"] - mu_min
-        # each evaluation starts from the nearest speed solved so far
-        nearest = cache[min(cache, key=lambda v: abs(v - u))]
-        cache[u] = _scan(case, [u], model, opts, initial=nearest)[0][0]
-        found["evaluations"] += 1
-        return cache[u]["mu"] - mu_min
-
-    speed = float(brentq(f, a, b, xtol=xtol * a, rtol=1e-10))
+    if refined is not None and refined[0] == (a, b):   # a worker's, while the scan went on
+        speed, cache = refined[1:]
+    else:
+        speed, cache = refine(case, model, opts, a, b, results[j - 1], results[j], mu_min,
+                              xtol)
+        found["evaluations"] += len(cache) - 2
     at = cache[min(cache, key=lambda v: abs(v - speed))]
     used += [m for m in dict.fromkeys(_used(r) for r in cache.values()) if m not in used]
     found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))
