@@ -10,8 +10,6 @@ crossing, the root find is done when the scan is.
 
 from __future__ import annotations
 
-from scipy.optimize import brentq
-
 from .api import solve_along
 from .case import Case
 from .errors import ConvergenceError
@@ -69,6 +67,10 @@ def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b
     """Brent's method for the speed where mu crosses ``mu_min`` between the solved speeds
     ``a < b`` (results ``at_a`` and ``at_b``), to ``xtol`` relative to ``a``: the speed and
     every result by speed (the two given first; the others are the solves made)."""
+    # imported here: on two processes the worker that refines pays for it (0.05 s), not
+    # the command's start
+    from scipy.optimize import brentq
+
     # the bracket's ends are the scan's own answers: Brent's first two evaluations read
     # them (solving them again cost 0.6 s of the base case's 6-9 s fe2d search)
     cache = {a: at_a, b: at_b}
