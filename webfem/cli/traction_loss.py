@@ -45,7 +45,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--workers", type=positive_int, default=None,
                    help="local processes for the speed scan and the chart's searches "
                         f"(default {DEFAULT_WORKERS} where the machine has {DEFAULT_WORKERS} "
-                        "cores or more, else 1; the same answers, to rounding)")
+                        "cores or more, else 1; the same answers within the stated errors: a "
+                        "worker starts cold)")
     p.add_argument("--full-scan", action="store_true",
                    help="solve every speed up to --max-speed (the peak is then the whole "
                         "range's) instead of stopping at the first speed below --mu-min")
