@@ -18,8 +18,8 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    factorisations they took (a Newton step is one, a chord step none);
 4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
    imports included; its scan stops at the first speed below mu_min and runs on 2
-   processes where the machine has 2 cores and its 1-minute load average is at most 0.5,
-   the default: they pay only where both are idle); beside it the same with ``--workers 1``
+   processes where the machine has 2 cores, the default: they pay only where both are
+   idle); beside it the same with ``--workers 1``
    (serial; not the target's figure);
 5. one grooved design, a cold ``webfem.solve(cases/base_grooved.toml, model="fe2d")``
    (median of 3, after a warm-up);
@@ -79,7 +79,7 @@ def _cores() -> str:
     from webfem.cli.common import local_workers
     from webfem.cli.traction_loss import DEFAULT_WORKERS
 
-    n = local_workers(None, DEFAULT_WORKERS, when_idle=True)
+    n = local_workers(None, DEFAULT_WORKERS)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     return f"its scan on {n} process{'es' if n > 1 else ''} at load {load:.2g}"
 

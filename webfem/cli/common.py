@@ -181,29 +181,15 @@ def positive_int(text: str) -> int:
     return value
 
 
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:       # not on Linux
-        return os.cpu_count() or 1
-
-
-def local_workers(asked: int | None, default: int, *, when_idle: bool = False) -> int:
-    """``asked`` when given, else ``default`` but at most the cores this process may use;
-    ``when_idle``: 1 unless the 1-minute load average leaves one and a half cores idle or
-    more (work whose processes pay only on idle cores: a cold start in each, no more)."""
+def local_workers(asked: int | None, default: int) -> int:
+    """``asked`` when given, else ``default`` but at most the cores this process may use."""
     if asked is not None:
         return asked
-    cores = _cores()
-    n = max(1, min(default, cores))
-    if when_idle and n > 1:
-        try:
-            load = os.getloadavg()[0]
-        except (AttributeError, OSError):   # no load average here: the cores decide
-            return n
-        if load > cores - 1.5:
-            return 1
-    return n
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:       # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(default, cores))
 
 
 def add_dask_argument(p) -> None:

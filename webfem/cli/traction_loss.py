@@ -17,11 +17,11 @@ from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, Ticker, add_case_a
                      model_options, options_epilog, output_folder, positive_int, print_json,
                      speed_value)
 
-#: Processes of the speed scan unless told, where the machine has the cores and they are
-#: idle (:func:`~webfem.cli.common.local_workers`): this one walks the low speeds while a
-#: worker walks the rest and refines its crossing. The base case's fe2d search: 3.2-3.5 ->
-#: 2.4-2.7 s on 2 quiet cores, for about 13 % more CPU (the worker's cold start, its
-#: fork); with one core busy with another job 3.6-3.9 s serial against 4.0-4.5 s.
+#: Processes of the speed scan unless told (at most the machine's cores): this one walks
+#: the low speeds while a worker walks the rest and refines its crossing. The base case's
+#: fe2d search on 2 quiet cores: 3.35-3.85 -> 2.32-3.16 s, for about 10 % more CPU (the
+#: worker's cold start, its fork); with one core busy with another job they lost, 3.6-3.9 s
+#: serial against 4.0-4.5 s, and with two it was a toss-up (3.5-6.5 against 3.2-6.9 s).
 DEFAULT_WORKERS = 2
 
 
@@ -47,9 +47,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--workers", type=positive_int, default=None,
                    help="local processes for the speed scan and the chart's searches "
                         f"(default {DEFAULT_WORKERS} where the machine has {DEFAULT_WORKERS} "
-                        "cores or more and its 1-minute load average leaves 1.5 of them "
-                        "idle, else 1; the same answers within the stated errors: a worker "
-                        "starts cold)")
+                        "cores or more, else 1: they pay only where both are idle; the same "
+                        "answers within the stated errors: a worker starts cold)")
     p.add_argument("--full-scan", action="store_true",
                    help="solve every speed up to --max-speed (the peak is then the whole "
                         "range's) instead of stopping at the first speed below --mu-min")
@@ -62,7 +61,7 @@ def run(args) -> int:
     options = model_options(args)
     chart_dir = output_folder(args.chart, "--chart") if args.chart else None
     speed_range = (args.min_speed, args.max_speed)
-    workers = local_workers(args.workers, DEFAULT_WORKERS, when_idle=True)
+    workers = local_workers(args.workers, DEFAULT_WORKERS)
     with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
         out = traction_loss_speed(case, args.mu_min, model=args.model,
                                   speed_range=speed_range, options=options,
