@@ -138,7 +138,7 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         a cold start and refines its crossing at once (used where it is the scan's first).
         A cold start may solve on another mesh than the continued one, so the
         values agree within the model's stated errors: on the base case's fe2d search
-        mu_peak 3.5e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
+        mu_peak 3.2e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
     full_scan : bool
         Solve every speed of the range, not stopping at the first crossing.
 
