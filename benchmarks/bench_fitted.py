@@ -6,9 +6,15 @@ evaluation speed, and its errors against fe2d on fresh points of another design.
     python benchmarks/bench_fitted.py fresh [--points 40] [--seed 2024]
     python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
     python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
+    python benchmarks/bench_fitted.py kernels [--store benchmarks/fit_campaign/campaign.csv]
 
 ``methods`` compares fitting methods inside the training set (three quarters fit, the
 fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
+
+``kernels`` builds the fit from a campaign with each radial function the one-pass stack
+evaluates (the shipped Matern-5/2, a Gaussian, a rational-quadratic), as ``webfem fit
+build --fit-only`` does, and gives each one's hold-out errors, a paired bootstrap of its
+change against the first's, and predict's speed, alternated.
 
 ``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
 a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
@@ -30,20 +36,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 def coverage(points: int) -> None:
     import envelope_sample as es
-    from webfem.errors import InputError
     from webfem.models import fit_groups as fg
     possible = inside = 0
     why: dict[str, int] = {}
-    for i in range(points):
-        p = es.draw(i)
-        if p["grooved"]:
-            continue
-        try:
-            case = es.case_of(p)
-        except InputError:          # T_eff <= 0: no tension holds the web
-            continue
-        if case.h_scale >= case.roller.radius / 100:   # not a thin film
-            continue
+    for case in es.smooth_possible(points):
         possible += 1
         text = fg.outside(case)
         if text is None:
@@ -82,10 +78,12 @@ def speed(coefficients: str | None = None) -> None:
     G = np.repeat(fg.group_array(fg.groups_of(case)), 100_000, axis=0)
     G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
     raw = len(G) / best(lambda: fitted.predict(G, fit))
+    raw1 = len(G) / best(lambda: fitted.predict(G, fit, n_threads=1))
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     kernels = [fit["kernel"], *fit["scalars"]]
     if fit.get("stack") is not None:      # the kernels in one pass, as predict runs them
-        kernel = len(G) / best(lambda: fit["stack"](x))
+        b = getattr(fitted, "BLOCK", len(G))
+        kernel = len(G) / best(lambda: [fit["stack"](x[i:i + b]) for i in range(0, len(x), b)])
     else:
         kernel = len(G) / best(lambda: [k(x) for k in kernels])
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; fit: "
@@ -93,8 +91,10 @@ def speed(coefficients: str | None = None) -> None:
                       for k in kernels))
     print(f"one webfem.solve(model='fitted'):       {one * 1e3:8.3f} ms      (target <= 1 ms)")
     print(f"webfem.solve_many of 10,000 (results):  {many:8.3f} s       (target <= 1 s)")
-    print(f"fitted.predict (raw profile, 100,000):  {raw:8.3g} points/s (target >= 1e6)")
-    print(f"  of which the kernels alone:           {kernel:8.3g} points/s")
+    print(f"fitted.predict (raw profile, 100,000):  {raw:8.3g} points/s (target >= 1e6; "
+          f"{min(fitted.threads(), -(-len(G) // fitted.BLOCK))} threads)")
+    print(f"  on one thread:                        {raw1:8.3g} points/s")
+    print(f"  of which the kernels alone:           {kernel:8.3g} points/s (one thread)")
 
 
 def fresh(points: int, seed: int) -> None:
@@ -102,9 +102,11 @@ def fresh(points: int, seed: int) -> None:
     from webfem.models import fit_groups as fg
     from webfem.models.readout import READ_QUANTITIES, error_scale
     from webfem.studies import fit_campaign as fc
+    from webfem.studies.fit_build import DN_EDGES
     G = fc.design(points, seed=seed)
     errs = {q: [] for q in READ_QUANTITIES}
     ratio = {q: [] for q in READ_QUANTITIES}
+    Dn = []
     failed = 0
     t0 = time.perf_counter()
     for i, row in enumerate(G):
@@ -115,6 +117,7 @@ def fresh(points: int, seed: int) -> None:
             failed += 1
             continue
         r = webfem.solve(case, model="fitted")
+        Dn.append(g["Dn"])
         for q in READ_QUANTITIES:
             e = abs(r[q] - ref[q]) / error_scale(case, q, ref[q])
             errs[q].append(e)
@@ -126,6 +129,14 @@ def fresh(points: int, seed: int) -> None:
         print(f"  {q:<14} error 50/90/95 %: " + " ".join(
             f"{v:.3g}" for v in np.percentile(e, [50, 90, 95]))
               + f"; within stated {np.mean(k <= 1):.0%}, within 2x stated {np.mean(k <= 2):.0%}")
+    # the stated table's Dn bands (fit_build.DN_EDGES): the share within the stated error
+    Dn = np.array(Dn)
+    band = np.searchsorted(DN_EDGES, Dn)
+    for b, name in enumerate(("Dn < 1", "Dn 1-100", "Dn > 100")):
+        m = band == b
+        print(f"  {name:<9} ({m.sum()} points) within stated: " + " / ".join(
+            f"{np.mean(np.array(ratio[q])[m] <= 1):.0%}" for q in READ_QUANTITIES)
+              + " (" + " / ".join(READ_QUANTITIES) + ")")
 
 
 def maps(out: str) -> None:
@@ -155,11 +166,16 @@ def maps(out: str) -> None:
             ax.loglog(x, np.maximum(E[:, j], 1e-6), ".", ms=4, label=q)
         ax.set_xlabel(fg.GROUPS[k] + (" (0 plotted at 3e-4)" if fg.GROUPS[k] == "Kb" else ""))
         ax.axhline(0.01, color="k", lw=0.6)
+        if fg.GROUPS[k] == "Dn":     # the stated table's Dn bands
+            from webfem.studies.fit_build import DN_EDGES
+            for edge in DN_EDGES:
+                ax.axvline(edge, color="grey", lw=0.8, ls="--")
+            ax.set_xlabel("Dn (dashed: the stated table's bands)")
     axes[0, 0].set_ylabel("hold-out error")
     axes[1, 0].set_ylabel("hold-out error")
     axes[0, 0].legend(fontsize=7)
-    fig.suptitle(f"fitted model: hold-out error against each group ({len(G)} points; "
-                 "line: 1 %)")
+    fig.suptitle(f"fitted model: hold-out error against each group ({len(G)} points never "
+                 "used in fitting; line: 1 %; errors below 1e-6 drawn at 1e-6)")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
     print(f"wrote {out}")
@@ -218,9 +234,69 @@ def methods(store: str) -> None:
             for q in ("h_center", "h_min", "mu", "contact_share")) + " |")
 
 
+def holdout_percentiles(npz: str) -> dict[str, np.ndarray]:
+    """Per hold-out row of a coefficients file, its fit's errors (as the build states them)."""
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.studies import fit_build as fb
+    fit = fitted.coefficients(npz)
+    data = np.load(npz)
+    rows = [{**{f"g_{g}": v for g, v in zip(fg.GROUPS, G)}, **dict(zip(fitted.QUANTITIES, V))}
+            for G, V in zip(data["holdout_groups"], data["holdout_values"])]
+    return fb.holdout_errors(rows, fit)
+
+
+def kernels(store: str) -> None:
+    import tempfile
+    from webfem import Case
+    from webfem.models import fit_groups as fg
+    from webfem.models import fitted
+    from webfem.studies import fit_build as fb
+    kinds = ("matern52", "gaussian", "cauchy")
+    errs, fits = {}, {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind in kinds:
+            out = f"{tmp}/{kind}.npz"
+            t0 = time.perf_counter()
+            fb.build(store, out, kind=kind)
+            errs[kind], fits[kind] = holdout_percentiles(out), fitted.coefficients(out)
+            print(f"{kind}: built in {time.perf_counter() - t0:.0f} s; hold-out 50 / 90 / 95 "
+                  "% / max")
+            for q in fitted.QUANTITIES:
+                print(f"  {q:<14}" + " / ".join(
+                    f"{v:.3g}" for v in np.percentile(errs[kind][q], [50, 90, 95, 100])))
+    rng = np.random.default_rng(0)
+    a = errs[kinds[0]]
+    idx = rng.integers(0, len(a["mu"]), (2000, len(a["mu"])))
+    for kind in kinds[1:]:
+        print(f"{kind} - {kinds[0]}: change and its paired bootstrap's 95 % interval")
+        for q in fitted.QUANTITIES:
+            A, B = a[q][idx], errs[kind][q][idx]
+            for name, f in (("median", np.median), ("95th", lambda v, axis=None:
+                                                      np.percentile(v, 95, axis=axis))):
+                d = f(B, axis=1) - f(A, axis=1)
+                print(f"  {q:<14} {name:<6} {f(errs[kind][q]) - f(a[q]):+.3g} "
+                      f"[{np.percentile(d, 2.5):+.3g}, {np.percentile(d, 97.5):+.3g}]")
+    G = np.repeat(fg.group_array(fg.groups_of(Case())), 100_000, axis=0)
+    G *= np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, G.shape))
+    speed = {k: [] for k in kinds}
+    for _ in range(3):                   # alternated: the machine's load moves
+        for kind in kinds:
+            for n in (1, None):
+                t0 = time.perf_counter()
+                fitted.predict(G, fits[kind], n_threads=n)
+                speed[kind].append((n, len(G) / (time.perf_counter() - t0)))
+    for kind, v in speed.items():
+        one = [s for n, s in v if n == 1]
+        many = [s for n, s in v if n is None]
+        print(f"{kind}: predict {min(one):.3g}-{max(one):.3g} points/s on one thread, "
+              f"{min(many):.3g}-{max(many):.3g} on {fitted.threads()}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods"))
+    ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods",
+                                     "kernels"))
     ap.add_argument("--store", default="out/fit/campaign.csv")
     ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
@@ -235,6 +311,9 @@ def main() -> None:
         maps(a.out)
     elif a.what == "methods":
         methods(a.store)
+    elif a.what == "kernels":
+        kernels(a.store if a.store != "out/fit/campaign.csv"
+                else "benchmarks/fit_campaign/campaign.csv")
     else:
         fresh(a.points or 40, a.seed)
 

@@ -17,7 +17,10 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
    two-grid start, and the estimate reuses it), chord steps included; beside it the sparse
    factorisations they took (a Newton step is one, a chord step none);
 4. ``webfem traction-loss base --mu-min 0.1 --model fe2d`` (the CLI in a fresh process,
-   imports included);
+   imports included; its scan stops at the first speed below mu_min and runs on 2
+   processes where the machine has 2 cores, the default: they pay only where both are
+   idle); beside it the same with ``--workers 1``
+   (serial; not the target's figure);
 5. one grooved design, a cold ``webfem.solve(cases/base_grooved.toml, model="fe2d")``
    (median of 3, after a warm-up);
 6. the 32-design groove map ``webfem grooves base --mu-min 0.2`` (the CLI in a fresh
@@ -25,6 +28,7 @@ root (about 4 minutes with the groove map, which alone took 2.7 minutes before i
 """
 
 import contextlib
+import os
 import statistics
 import subprocess
 import sys
@@ -70,6 +74,16 @@ def _cli(args):
     return time.perf_counter() - t0
 
 
+def _cores() -> str:
+    """What the command's default scan runs on here (webfem.cli.traction_loss)."""
+    from webfem.cli.common import local_workers
+    from webfem.cli.traction_loss import DEFAULT_WORKERS
+
+    n = local_workers(None, DEFAULT_WORKERS)
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    return f"its scan on {n} process{'es' if n > 1 else ''} at load {load:.2g}"
+
+
 def main(groove_map: bool = True):
     warnings.simplefilter("ignore")
     base = load_case("cases/base.toml")
@@ -106,9 +120,12 @@ def main(groove_map: bool = True):
           f"{min(fac)}-{max(fac)}; of them on the answer's mesh (the rest on coarser ones): "
           f"median {statistics.median(fine):g}, range {min(fine)}-{max(fine)}")
 
-    t = _cli(["traction-loss", "base", "--mu-min", "0.1", "--model", "fe2d"])
+    args = ["traction-loss", "base", "--mu-min", "0.1", "--model", "fe2d"]
+    where = _cores()
+    t = _cli(args)
+    serial = _cli(args + ["--workers", "1"])
     print(f"4. webfem traction-loss base --mu-min 0.1 --model fe2d: {t:.2f} s (one run, a "
-          "fresh process)")
+          f"fresh process; {where}); serial (--workers 1) {serial:.2f} s")
     print(target("traction-loss base, fe2d", t, 3.0))
 
     webfem.solve(grooved, "fe2d")

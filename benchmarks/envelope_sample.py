@@ -83,6 +83,22 @@ def case_of(p: dict):
         "web.acceleration": 0.0, "wrap.angle_deg": p["wrap_deg"]})
 
 
+def smooth_possible(points: int):
+    """The cases of the first ``points`` points on smooth rollers that are physically
+    possible (T_eff > 0 and a thin film: :data:`IMPOSSIBLE`'s two kinds left out)."""
+    from webfem.errors import InputError
+    for i in range(points):
+        p = draw(i)
+        if p["grooved"]:
+            continue
+        try:
+            case = case_of(p)
+        except InputError:          # T_eff <= 0: no tension holds the web
+            continue
+        if case.h_scale < case.roller.radius / 100:     # a thin film
+            yield case
+
+
 # -- reading an outcome --------------------------------------------------------------------
 
 #: Refusals no model could answer: the point is not physically possible (not counted).

@@ -5,7 +5,14 @@ in webfem's error measures (docs/fit.md, "Errors").
 
     python benchmarks/fit_span_sensitivity.py benchmarks/fit_campaign/campaign.csv 30
 
-(about 10 minutes on the 2-core VM)."""
+(about 10 minutes on the 2-core VM).
+
+    python benchmarks/fit_span_sensitivity.py --envelope [2000]
+
+how far real rollers are from the campaign's span for their groups: over the envelope
+benchmark's smooth points inside the fitted domain, the span in film lengths Ls = span /
+(R eps^(1/3)) of the case against that of ``case_of_groups`` of its groups (the campaign's
+case), by Dn band (a few seconds)."""
 import csv
 import json
 import sys
@@ -18,8 +25,33 @@ from webfem.studies import fit_campaign as fc
 from webfem.studies.time_limit import time_limit
 
 
+def envelope(points: int) -> None:
+    import os
+
+    import numpy as np
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import envelope_sample as es
+    rows = []
+    for case in es.smooth_possible(points):
+        if fg.outside(case) is not None:
+            continue
+        g = fg.groups_of(case)
+        ref = fc.case_of_groups(g)
+        rows.append((g["Dn"], case.span_used / case.x_scale, ref.span_used / ref.x_scale))
+    A = np.array(rows)
+    r = np.abs(np.log10(A[:, 1] / A[:, 2]))
+    for lo, hi in ((0, 1), (1, 100), (100, 1e3), (1e3, np.inf)):
+        m = (A[:, 0] >= lo) & (A[:, 0] < hi)
+        print(f"Dn {lo:g}-{hi:g}: {m.sum()} points, |log10 Ls / Ls_campaign| 50 / 90 % / max "
+              f"{np.percentile(r[m], 50):.2f} / {np.percentile(r[m], 90):.2f} / "
+              f"{r[m].max():.2f}; Ls {A[m, 1].min():.0f}-{A[m, 1].max():.0f}")
+
+
 def main() -> None:
     warnings.simplefilter("ignore")
+    if sys.argv[1] == "--envelope":
+        envelope(int(sys.argv[2]) if len(sys.argv) > 2 else 2000)
+        return
     with open(sys.argv[1], newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["holdout"] == "1" and r["converged"] == "True"]
     rows.sort(key=lambda r: float(r["g_Dn"]))

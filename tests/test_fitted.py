@@ -110,6 +110,18 @@ def test_ci_sized_campaign_builds_a_fit_that_answers(tmp_path, capsys):
     rows = typed(read_table(store / "holdout.csv").rows)
     assert [r["n"] for r in rows] == [4]
     assert (store / "campaign.csv").read_text().splitlines()[:7] == before
+    # --extra-holdout: points of another design (EXTRA_SEED), every one held out, join the
+    # hold-out rows in stating the errors
+    assert main(["fit", "build", "--points", "7", "--store", str(store), "--timeout", "30",
+                 "--extra-holdout", "2", "--fit-only", "--json", "--quiet"]) == 0
+    extra = json.loads(capsys.readouterr().out)
+    rows = typed(read_table(store / "extra_holdout.csv").rows)
+    assert [r["n"] for r in rows] == [0, 1] and all(r["holdout"] == 1 for r in rows)
+    assert [r["g_beta"] for r in rows] == pytest.approx(
+        fc.design(2, seed=fc.EXTRA_SEED)[:, fg.GROUPS.index("beta")], rel=1e-12)
+    answered = sum(bool(r["converged"]) for r in rows)
+    assert extra["holdout_extra"] == answered >= 1
+    assert extra["holdout"] == rechecked["holdout"] + answered
     # the fit does not depend on the order of the rows (an interrupted parallel run leaves
     # them in the order they finished): the rows reversed refit to the same arrays
     lines = (store / "campaign.csv").read_text().splitlines(keepends=True)
@@ -460,3 +472,90 @@ def test_centres_stop_where_the_points_are_spanned():
     x = np.repeat(np.random.default_rng(1).random((5, 3)), 4, axis=0)
     idx = fb.select_centres(x, np.ones(3), 20)
     assert len(idx) == 5 and len({tuple(x[i]) for i in idx}) == 5
+
+
+def test_stated_errors_are_per_gap_region_and_bending_band():
+    """The stated table has a row per (gap region, Dn band): a stiff web's stated errors
+    are its band's, not the flexible webs' it shared a row with before (a flying stiff web's
+    h_min 95th percentile is several times a flexible one's on the hold-out set), and the
+    basis names the cell."""
+    fit = fitted.coefficients()
+    assert fit["errors"].shape == (9, len(fitted.QUANTITIES))
+    flying = fit["errors"][6:9]
+    assert flying[2, 1] > 2.0 * flying[0, 1]
+    stiff = Case().updated({"web.bending_stiffness": 0.5, "roller.speed": 30.0})
+    g = fg.groups_of(stiff)
+    assert g["Dn"] > 100.0 and fg.outside(stiff) is None
+    r = webfem.solve(stiff, model="fitted")
+    region = int(fitted.predict(fg.group_array(g))["region"][0])
+    assert region % 3 == 2
+    assert r["error_h_min"] == fit["errors"][region, 1]
+    assert "stiff web (bending group Dn > 100)" in r["error_basis"]
+
+
+def test_many_points_are_answered_alone_whatever_the_threads_and_the_batch():
+    """predict shares blocks of points among threads: each point's answer is its own, the
+    same on one thread or two, in a batch of any size and alone (to rounding)."""
+    G = fc.design(2 * fitted.BLOCK + 37, seed=11)
+    one = fitted.predict(G, n_threads=1)
+    two = fitted.predict(G, n_threads=2)
+    for k, a in one.items():
+        if a is not None:
+            assert np.array_equal(a, two[k]), k
+    # a batch that cuts the blocks elsewhere, and points alone
+    part = fitted.predict(G[fitted.BLOCK - 5:], n_threads=2)
+    alone = [fitted.predict(G[i:i + 1]) for i in (0, fitted.BLOCK, len(G) - 1)]
+    for k in ("H", "P", "H_min", "s_min", "H_center", "share"):
+        np.testing.assert_allclose(part[k], one[k][fitted.BLOCK - 5:], rtol=1e-12, atol=1e-14)
+        for i, a in zip((0, fitted.BLOCK, len(G) - 1), alone):
+            np.testing.assert_allclose(a[k][0], one[k][i], rtol=1e-12, atol=1e-14)
+    assert np.array_equal(part["region"], one["region"][fitted.BLOCK - 5:])
+
+
+def test_the_read_out_is_the_fit_variables_inverse():
+    """predict's gap is the fit's variable over the baseline, inverted: H = fit_to_gap(Y +
+    gap_to_fit(baseline)) (the algebra predict shortcuts), and softplus is logaddexp."""
+    z = np.concatenate([np.linspace(-800, 800, 4001), [0.0, 1e-300, -1e-300]])
+    np.testing.assert_allclose(fg.softplus(z), np.logaddexp(0.0, z), rtol=1e-15, atol=0)
+    fit = fitted.coefficients()
+    G = fc.design(300, seed=12)
+    pr = fitted.predict(G, fit)
+    x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
+    Y = fit["stack"](x)
+    n = len(fg.NODES)
+    S = G[:, fg.GROUPS.index("S")][:, None]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])[:, None]
+    base, base_min = fg.baseline(G)
+    H = fg.fit_to_gap(Y[:, :n] + fg.gap_to_fit(base, S, H_c), S, H_c)
+    np.testing.assert_allclose(pr["H"], H, rtol=1e-12, atol=1e-12 * np.abs(H).max())
+    centre = fg.asinh_to_gap(Y[:, 2 * n + 2] + fg.gap_to_asinh(base[:, n // 2], S[:, 0],
+                                                                  H_c[:, 0]), S[:, 0], H_c[:, 0])
+    np.testing.assert_allclose(pr["H_center"], centre, rtol=1e-12,
+                               atol=1e-12 * np.abs(centre).max())
+
+
+@pytest.mark.parametrize("kind", ["gaussian", "cauchy"])
+def test_other_kernels_stack_and_fit_as_the_generic_formula(kind):
+    """The build's other radial functions: fitted by the same machinery, and the one-pass
+    stack evaluates them as their formula does."""
+    from webfem.models.fit_kernel import KINDS, Stack
+    from webfem.studies import fit_build as fb
+    rng = np.random.default_rng(6)
+    x = rng.uniform(size=(80, 3))
+    y = np.column_stack([np.sin(3 * x[:, 0]) * x[:, 1], np.cos(2 * x[:, 2])])
+    k = fb.fit_kernel(x, y, trend=False, restarts=0, centres=40, kind=kind)
+    s = fb.fit_kernel(x, y[:, :1], trend=False, restarts=0, kind=kind)
+    assert k.kind == s.kind == kind and len(k.centres) == 40
+    xt = rng.uniform(size=(300, 3))
+    generic = np.column_stack([
+        KINDS[kind](xt, q.centres, q.scales) @ q.weights * q.y_std + q.y_mean for q in (k, s)])
+    np.testing.assert_allclose(k(xt), generic[:, :2], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(Stack([k, s])(xt), generic, rtol=1e-10, atol=1e-10)
+    fast = Stack([k, s], radial=np.float32)(xt)
+    bound = 1e-6 * sum(np.abs(q.weights * q.y_std).sum(axis=0).max() for q in (k, s))
+    np.testing.assert_allclose(fast, generic, rtol=0, atol=bound)
+    # a smooth function, interpolated: the fit means something
+    truth = np.column_stack([np.sin(3 * xt[:, 0]) * xt[:, 1], np.cos(2 * xt[:, 2])])
+    assert np.abs(k(xt) - truth).max() < 0.1
+    with pytest.raises(ValueError, match="one kind"):
+        Stack([k, fb.fit_kernel(x, y, trend=False, restarts=0)])

@@ -20,7 +20,8 @@ LAYERS = [
     {"summary", "result", "describe"},
     {"models"},
     {"api"},
-    {"sweeps", "traction", "calibrate", "effects", "idler", "studies", "groove_sizing"},
+    {"sweeps", "traction", "loss_scan", "calibrate", "effects", "idler", "studies",
+     "groove_sizing"},
     {"io"},
     {"cli", "__main__"},
 ]

@@ -211,6 +211,7 @@ def test_traction_loss_scan_in_two_processes_finds_the_same_speed():
     serial = traction_loss_speed(case, 0.1, "fe1d", n_scan=10)
     both = traction_loss_speed(case, 0.1, "fe1d", n_scan=10, workers=2)
     assert both.speed_peak == serial.speed_peak and both.bracket == serial.bracket
+    assert both.scanned == serial.scanned
     assert both.mu_peak == pytest.approx(serial.mu_peak, rel=1e-9)
     assert both.speed == pytest.approx(serial.speed, rel=1e-3)
     with pytest.raises(webfem.errors.InputError, match="workers = 1.5 is out of range"):
@@ -324,15 +325,157 @@ def test_traction_loss_says_which_model_answered(capsys):
 def test_the_root_find_solves_no_speed_twice(monkeypatch):
     """Brent's first evaluations are the bracket's ends, the scan's own answers: read, not
     solved again; ``evaluations`` counts the solves made."""
+    import webfem.loss_scan as ls
     import webfem.traction as tl
 
     speeds = []
-    scan = tl._scan
+    along = ls.solve_along
 
-    def recorded(case, us, *args, **kwargs):
-        speeds.extend(float(u) for u in us)
-        return scan(case, us, *args, **kwargs)
-    monkeypatch.setattr(tl, "_scan", recorded)
+    def recorded(cases, *args, **kwargs):
+        for res in along(cases, *args, **kwargs):
+            speeds.append(res.case.roller.speed)
+            yield res
+    monkeypatch.setattr(ls, "solve_along", recorded)
     out = tl.traction_loss_speed(Case(), 0.1, "closed-form")
     assert len(speeds) == len(set(speeds)) == out.evaluations
     assert out.bracket[0] < out.speed < out.bracket[1]
+
+
+def test_the_scan_stops_at_its_first_crossing():
+    """The speeds above the first one below mu_min are not solved: the answer is the full
+    scan's, ``scanned`` and the message say where the scan stopped."""
+    full = traction_loss_speed(Case(), 0.1, "closed-form", full_scan=True)
+    out = traction_loss_speed(Case(), 0.1, "closed-form")
+    for key in ("speed", "mu_peak", "speed_peak", "bracket", "model_used"):
+        assert out[key] == full[key], key
+    assert out.scanned == (0.5, out.bracket[1]) and full.scanned == (0.5, 100.0)
+    assert out.evaluations == full.evaluations - 5   # 31.6 m/s was the last speed solved
+    assert "the scan stopped at 31.61 m/s" in out.message
+    assert "stopped" not in full.message
+    assert json.loads(json.dumps(out.to_dict()))["scanned"] == [0.5, out.bracket[1]]
+    never = traction_loss_speed(Case(), 0.5, "closed-form")   # no crossing: every speed
+    assert never.scanned == (0.5, 100.0) and never.evaluations == 24
+
+
+class _Fake:
+    """A result whose mu is a given function of the roller speed."""
+
+    def __init__(self, case, mu):
+        self.case, self.summary = case, {"mu": mu, "model": "fake", "model_used": None}
+
+    def __getitem__(self, key):
+        return self.summary[key]
+
+    def slim(self):
+        return self
+
+
+def _two_humps(u):
+    """mu rising above 0.1, falling through it at 10 m/s, then rising higher and falling
+    through it again at 40 m/s."""
+    return 0.2 - 0.1 * np.log(u / 2.0) / np.log(5.0) if u < 20.0 else \
+        0.3 - 0.2 * np.log(u / 20.0) / np.log(2.0) if u > 20.0 else 0.3
+
+
+#: Roller speed [m/s] above which the fake solve of ``two_humps`` fails.
+FAIL_ABOVE = {"speed": 250.0}
+
+
+#: The roller speeds the fake solve of ``two_humps`` answered in this process.
+SOLVED_HERE: list = []
+
+
+@pytest.fixture
+def two_humps(monkeypatch):
+    import webfem.loss_scan as ls
+    import webfem.traction as tl
+
+    def along(cases, *args, **kwargs):
+        for c in cases:
+            if c.roller.speed > FAIL_ABOVE["speed"]:
+                raise webfem.errors.ConvergenceError("no answer up there")
+            SOLVED_HERE.append(c.roller.speed)
+            yield _Fake(c, _two_humps(c.roller.speed))
+    monkeypatch.setattr(ls, "solve_along", along)
+    monkeypatch.setattr(ls, "LOW_SHARE", 0.375)
+    monkeypatch.setitem(FAIL_ABOVE, "speed", 250.0)
+    SOLVED_HERE.clear()
+    return tl
+
+
+def test_full_scan_finds_the_crossing_after_the_highest_peak(two_humps):
+    """Where mu rises above mu_min again, higher than before: the stopped scan answers the
+    first crossing (10 m/s) and its peak, the full scan the crossing after the highest peak
+    (40 m/s); neither reads a speed past its own answer for more than its bracket."""
+    first = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", speed_range=(2.0, 80.0),
+                                          n_scan=17)
+    full = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", speed_range=(2.0, 80.0),
+                                         n_scan=17, full_scan=True)
+    assert first.speed == pytest.approx(10.0, rel=1e-3) and first.bracket[1] < 20.0
+    assert first.mu_peak == pytest.approx(0.2) and first.scanned[1] == first.bracket[1]
+    assert full.speed == pytest.approx(40.0, rel=1e-3) and 0.29 < full.mu_peak <= 0.3
+    assert full.scanned == (2.0, 80.0)
+
+
+@pytest.mark.skipif(__import__("multiprocessing").get_start_method() != "fork",
+                    reason="the workers must inherit the monkeypatched solve")
+def test_a_scan_in_two_processes_is_the_serial_one(two_humps):
+    """The worker's run stops at a crossing of its own or goes on; the answer is the serial
+    scan's either way, and a failure past the first crossing costs nothing (the serial scan
+    never solves there), while one before it is the serial scan's error."""
+    kw = dict(speed_range=(2.0, 80.0), n_scan=17)
+    serial = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", **kw)
+    both = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", workers=2, **kw)
+    for key in ("speed", "mu_peak", "speed_peak", "bracket", "scanned"):
+        assert both[key] == serial[key], key
+    assert both.evaluations >= serial.evaluations   # the worker's run past the crossing
+    # this process walks 2-6.3 m/s, all above 0.1; the worker 8.0 (above) and 10.0 (below),
+    # then refines that crossing: the scan's first, so this process solves nothing more
+    SOLVED_HERE.clear()
+    again = two_humps.traction_loss_speed(Case(), 0.1, "fe1d", workers=2, **kw)
+    assert SOLVED_HERE == pytest.approx(np.geomspace(2.0, 80.0, 17)[:6], rel=1e-15)
+    assert again.speed == serial.speed and again.evaluations == serial.evaluations
+    # mu_min 0.15: the first crossing (4.5 m/s) is this process's, which refines it; the
+    # worker refined the second one (about 34 m/s) in vain: its solves count
+    serial = two_humps.traction_loss_speed(Case(), 0.15, "fe1d", **kw)
+    SOLVED_HERE.clear()
+    both = two_humps.traction_loss_speed(Case(), 0.15, "fe1d", workers=2, **kw)
+    assert both.speed == serial.speed == pytest.approx(2.0 * 5.0 ** 0.5, rel=1e-3)
+    assert any(3.99 < u < 5.0 for u in SOLVED_HERE)
+    assert both.evaluations > serial.evaluations
+    # this process walks 2-9.4 m/s, all above 0.1; the worker 12.8 m/s (below), 17.4,
+    # 23.7 (above) and fails at 32.3: past the first crossing, which the serial scan ends at
+    FAIL_ABOVE["speed"] = 30.0
+    past = dict(speed_range=(2.0, 280.0), n_scan=17)
+    assert two_humps.traction_loss_speed(Case(), 0.1, "fe1d", workers=2, **past)["speed"] \
+        == pytest.approx(10.0, rel=1e-3)
+    FAIL_ABOVE["speed"] = 250.0
+    before = dict(speed_range=(0.5, 280.0), n_scan=4)   # no crossing before it
+    with pytest.raises(webfem.errors.ConvergenceError, match="U_r = 280 m/s"):
+        two_humps.traction_loss_speed(Case(), 5.0, "fe1d", workers=2, **before)
+    with pytest.raises(webfem.errors.ConvergenceError, match="U_r = 280 m/s"):
+        two_humps.traction_loss_speed(Case(), 5.0, "fe1d", **before)
+
+
+def test_cli_traction_loss_scans_on_two_processes_where_it_can(monkeypatch, capsys):
+    """The command's scan runs on 2 processes unless told, at most the cores it may use;
+    ``--full-scan`` solves every speed of the range."""
+    import webfem.cli.traction_loss as cli
+    from webfem.cli.common import local_workers
+
+    monkeypatch.setattr("os.sched_getaffinity", lambda pid: {0, 1, 2})
+    asked = []
+    search = cli.traction_loss_speed
+    monkeypatch.setattr(cli, "traction_loss_speed",
+                        lambda *a, **kw: asked.append(kw) or search(*a, **kw))
+    assert main(["traction-loss", "base", "--mu-min", "0.1", "--model", "closed-form",
+                 "--json"]) == 0
+    stopped = json.loads(capsys.readouterr().out)
+    assert main(["traction-loss", "base", "--mu-min", "0.1", "--model", "closed-form",
+                 "--json", "--full-scan", "--workers", "1"]) == 0
+    full = json.loads(capsys.readouterr().out)
+    assert asked[0]["workers"] == 2 and asked[1]["workers"] == 1
+    assert stopped["scanned"] == [0.5, stopped["bracket"][1]] and full["scanned"] == [0.5, 100]
+    assert stopped["speed"] == full["speed"] and stopped["mu_peak"] == full["mu_peak"]
+    monkeypatch.setattr("os.sched_getaffinity", lambda pid: {0})
+    assert local_workers(None, 2) == 1 and local_workers(3, 2) == 3

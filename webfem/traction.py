@@ -3,8 +3,9 @@
 mu(U_r) rises from the boundary-lubrication value at low speed, peaks, and falls as air lifts
 the web (the paper's Stribeck-like curve). The traction-loss speed is where it falls through
 ``mu_min`` after the peak: found on a logarithmic scan of roller speeds (walked with
-:func:`webfem.api.solve_along`, each FE point started from the previous one) and refined by
-Brent's method inside the bracketing interval.
+:func:`webfem.api.solve_along`, each FE point started from the previous one, up to the first
+speed where mu is below ``mu_min`` after having reached it) and refined by Brent's method
+inside the bracketing interval (the solves: :mod:`webfem.loss_scan`).
 
 Examples
 --------
@@ -21,11 +22,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .api import solve_along
 from .case import Case
-from .errors import ConvergenceError, InputError
+from .errors import InputError
+from .loss_scan import refine, scan
 from .models.options import Options
 from .models.registry import make_options, model_spec
 
@@ -44,8 +45,11 @@ class TractionLoss:
     """The answer of :func:`traction_loss_speed`.
 
     ``speed`` [m/s] is None when mu never reaches ``mu_min`` in the scanned range or never
-    falls below it; ``bracket`` the scan interval holding the crossing; ``evaluations`` the
-    number of solves; ``message`` says what was found. ``out["speed"]`` reads a field too.
+    falls below it; ``bracket`` the scan interval holding the crossing; ``mu_peak`` and
+    ``speed_peak`` the largest mu of the scan's speeds and where; ``scanned`` the lowest and
+    highest scan speed solved (the scan stops at its first crossing unless asked for the
+    full range); ``evaluations`` the number of solves; ``message`` says what was found (and
+    where the scan stopped). ``out["speed"]`` reads a field too.
     ``model_used``: the model that answered at the speed found (else at the peak): auto's
     choice there, or ``model`` itself; ``models_used``: every model that answered a solve
     of the search, in the order first used.
@@ -61,6 +65,7 @@ class TractionLoss:
     message: str
     model_used: str | None = None
     models_used: tuple[str, ...] = ()
+    scanned: tuple[float, float] | None = None
 
     def answered(self) -> str:
         """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
@@ -96,54 +101,18 @@ def _used(result) -> str:
     return result["model_used"] or result["model"]
 
 
-def _scan(case: Case, speeds, model: str, opts: Options, initial=None, workers: int = 1):
-    """Results at ``speeds`` in order with continuation; a failed solve is an error naming
-    its speed (a scan with a hole could miss the crossing). ``workers`` > 1: in that many
-    local processes, three runs of consecutive speeds each, each run with continuation (a
-    cold solve ends where a continued one does, so the values are the serial scan's)."""
-    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
-    if workers > 1 and len(cases) > 2 and model != "closed-form":
-        return _scan_in_processes(cases, speeds, model, opts, workers)
-    out = []
-    try:
-        for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):
-            out.append(res)
-    except ConvergenceError as err:
-        u = float(speeds[len(out)])
-        raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = {u:.4g} "
-                               f"m/s did not converge ({err})", err.result,
-                               err.history) from None
-    return out
-
-
-def _scan_in_processes(cases, speeds, model: str, opts: Options, workers: int):
-    """:func:`_scan` on ``workers`` processes: three runs of consecutive speeds per worker
-    (the low speeds cost most), each solved with continuation; results in speed order."""
-    from .sweeps.workers import PointError, Processes, solve_chunk
-
-    parts = min(3 * workers, len(cases))
-    bounds = [round(i * len(cases) / parts) for i in range(parts + 1)]
-    runs = [(i, (cases[a:b], model, opts)) for i, (a, b) in enumerate(zip(bounds, bounds[1:]))]
-    got: dict = {}
-    pool = Processes(min(workers, parts))
-    try:
-        pool.run(runs, got.__setitem__, task=solve_chunk)
-    finally:
-        pool.close()
-    out = [res for i in range(parts) for res in got[i]]
-    for u, res in zip(speeds, out):
-        if isinstance(res, PointError) or not res["converged"]:
-            why = res.message if isinstance(res, PointError) else res["solver_message"]
-            raise ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
-                                   f"{float(u):.4g} m/s did not converge ({why})")
-    return out
-
-
 def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                         speed_range=SPEED_RANGE, n_scan: int = 24, xtol: float = 1e-3,
                         options: Options | dict | None = None, workers: int = 1,
-                        **values) -> TractionLoss:
+                        full_scan: bool = False, **values) -> TractionLoss:
     """Roller speed [m/s] at which the wrap-averaged mu falls below ``mu_min`` (after its peak).
+
+    The scan walks up the speeds and stops at the first one where mu is below ``mu_min``
+    after having reached it (the speeds above cannot move that crossing); the root find
+    refines it between that speed and the one before. ``full_scan`` solves every speed of
+    the range: the peak is then the whole range's and the crossing the first after it (the
+    same answer unless mu rises above ``mu_min`` again at a higher speed, and higher than
+    before).
 
     Parameters
     ----------
@@ -163,10 +132,15 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         The model's options (an options object, a dict or keywords).
     workers : int
         Local processes for the scan (1 to 256; default 1): more than one runs the scan in
-        runs of consecutive speeds, each with continuation; the root find that follows is
-        serial. The scan's values are the serial scan's (a cold solve ends where a
-        continued one does: within 6e-11 in mu on the base case's fe2d scan, on the same
-        meshes), so the speed agrees within the root find's ``xtol`` (3e-7 relative there).
+        runs of consecutive speeds, each with continuation and each stopping at a crossing
+        of its own; this process walks the lowest speeds
+        (:data:`webfem.loss_scan.LOW_SHARE` of them for two), each worker the next run from
+        a cold start and refines its crossing at once (used where it is the scan's first).
+        A cold start may solve on another mesh than the continued one, so the
+        values agree within the model's stated errors: on the base case's fe2d search
+        mu_peak 3.2e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
+    full_scan : bool
+        Solve every speed of the range, not stopping at the first crossing.
 
     Returns
     -------
@@ -202,13 +176,20 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                     " m/s)")
         lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
-    results = _scan(case, speeds, model, opts, workers=workers)
+    results, solved, refined = scan(case, speeds, model, opts, workers=workers,
+                                    stop=None if full_scan else mu_min, xtol=xtol)
+    # a stopped scan's results end at its first crossing: the search below finds it again
+    # (every speed between mu's first reaching mu_min and it is at or above mu_min)
     mu = np.array([r["mu"] for r in results], float)
     i_peak = int(np.nanargmax(mu))
     used = list(dict.fromkeys(_used(r) for r in results))
     found = dict(model=model, mu_min=float(mu_min), mu_peak=float(mu[i_peak]),
-                 speed_peak=float(speeds[i_peak]), evaluations=n_scan, bracket=None,
-                 speed=None, model_used=_used(results[i_peak]), models_used=tuple(used))
+                 speed_peak=float(speeds[i_peak]), evaluations=solved, bracket=None,
+                 speed=None, model_used=_used(results[i_peak]), models_used=tuple(used),
+                 scanned=(float(speeds[0]), float(speeds[len(results) - 1])))
+    if len(results) < n_scan:
+        note = (f" (the scan stopped at {speeds[len(results) - 1]:.4g} m/s, its first speed "
+                f"below it){note}")
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
             f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
@@ -218,20 +199,12 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s{note}")
     j = i_peak + int(after[0])
     a, b = float(speeds[j - 1]), float(speeds[j])
-    # the bracket's ends are the scan's own answers: Brent's first two evaluations read
-    # them (solving them again cost 0.6 s of the base case's 6-9 s fe2d search)
-    cache = {a: results[j - 1], b: results[j]}
-
-    def f(u):
-        if u in cache:
-            return cache[u]["mu"] - mu_min
-        # each evaluation starts from the nearest speed solved so far
-        nearest = cache[min(cache, key=lambda v: abs(v - u))]
-        cache[u] = _scan(case, [u], model, opts, initial=nearest)[0]
-        found["evaluations"] += 1
-        return cache[u]["mu"] - mu_min
-
-    speed = float(brentq(f, a, b, xtol=xtol * a, rtol=1e-10))
+    if refined is not None and refined[0] == (a, b):   # a worker's, while the scan went on
+        speed, cache = refined[1:]
+    else:
+        speed, cache = refine(case, model, opts, a, b, results[j - 1], results[j], mu_min,
+                              xtol)
+        found["evaluations"] += len(cache) - 2
     at = cache[min(cache, key=lambda v: abs(v - speed))]
     used += [m for m in dict.fromkeys(_used(r) for r in cache.values()) if m not in used]
     found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))

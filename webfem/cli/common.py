@@ -36,6 +36,7 @@ __all__ = ["HELP_FORMATTER", "DEFAULT_MODEL", "UNITS_HELP", "add_case_arguments"
            "add_units_argument", "add_quiet_argument", "add_dask_argument", "bundled_cases", "case_path",
            "CaseArgument", "announce_case",
            "options_epilog", "case_from", "overrides", "positive_int", "speed_value",
+           "local_workers",
            "model_options", "output_folder", "print_json", "Progress", "Ticker",
            "progress_line", "error_line"]
 
@@ -178,6 +179,17 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"{value} is out of range: must be >= 1")
     return value
+
+
+def local_workers(asked: int | None, default: int) -> int:
+    """``asked`` when given, else ``default`` but at most the cores this process may use."""
+    if asked is not None:
+        return asked
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:       # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(default, cores))
 
 
 def add_dask_argument(p) -> None:

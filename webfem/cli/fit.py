@@ -51,6 +51,12 @@ def add_parser(subparsers) -> None:
                         "table exists its rows state the errors (for a fit trained on an "
                         "earlier physics: the shipped one); with --fit-only it solves "
                         "these alone")
+    p.add_argument("--extra-holdout", type=positive_int, default=None, metavar="N",
+                   help="solve the first N points of a design of another seed (every one "
+                        "held out) into STORE/extra_holdout.csv (resumable); whenever that "
+                        "table exists its rows join the hold-out rows in stating the errors "
+                        "(the shipped fit: docs/fit.md); with --fit-only it solves these "
+                        "alone")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     add_quiet_argument(p)
 
@@ -66,9 +72,10 @@ def run(args) -> int:
     t0 = time.perf_counter()
     if args.fit_only and args.retry_failed:
         raise InputError("--fit-only solves nothing: --retry-failed is for the campaign")
-    if args.fit_only and not args.recheck and (args.workers > 1 or args.dask):
+    if args.fit_only and not (args.recheck or args.extra_holdout) and \
+            (args.workers > 1 or args.dask):
         raise InputError("--fit-only solves nothing: --workers and --dask are for the "
-                         "campaign (or --recheck)")
+                         "campaign (or --recheck, --extra-holdout)")
     if not args.fit_only:
         fit_campaign.run(csv, args.points, timeout=args.timeout,
                          progress=Progress(args.quiet, "design points"),
@@ -81,8 +88,14 @@ def run(args) -> int:
         fit_campaign.recheck(recheck, args.points, timeout=args.timeout,
                              progress=Progress(args.quiet, "hold-out points"),
                              workers=args.workers, dask=args.dask)
+    extra = folder / "extra_holdout.csv"
+    if args.extra_holdout:
+        fit_campaign.extra_holdout(extra, args.extra_holdout, timeout=args.timeout,
+                                   progress=Progress(args.quiet, "extra hold-out points"),
+                                   workers=args.workers, dask=args.dask)
     solved = time.perf_counter() - t0
-    report = fit_build.build(csv, out, holdout_csv=recheck if recheck.is_file() else None)
+    report = fit_build.build(csv, out, holdout_csv=recheck if recheck.is_file() else None,
+                             extra_csv=extra if extra.is_file() else None)
     report.update(campaign_seconds=solved, total_seconds=time.perf_counter() - t0,
                   coefficients=str(out))
     if args.json:
@@ -91,7 +104,9 @@ def run(args) -> int:
     print(f"{report['train']} training and {report['holdout']} hold-out fe2d solutions "
           f"({report['failed']} failed) in {solved:.0f} s; coefficients: {out}"
           + ("; the hold-out points solved again with the current physics (holdout.csv) "
-             "state the errors" if report["holdout_rechecked"] else ""))
+             "state the errors" if report["holdout_rechecked"] else "")
+          + (f"; {report['holdout_extra']} of them from another design (extra_holdout.csv)"
+             if report["holdout_extra"] else ""))
     print("hold-out error percentiles 50/90/95/max:")
     full = report["full_fit_percentiles_50_90_95_max"]
     print(f"  (centres kept: {', '.join(str(m) for m in report['centres'])} of "

@@ -4,7 +4,6 @@ land (contact area): a map of traction against groove pitch and land fraction, a
 
 from __future__ import annotations
 
-import os
 import sys
 import textwrap
 from pathlib import Path
@@ -16,8 +15,8 @@ from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITC
                              groove_map, loss_speed_map)
 from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
-                     add_units_argument, case_from, model_options, output_folder, positive_int,
-                     print_json, speed_value)
+                     add_units_argument, case_from, local_workers, model_options,
+                     output_folder, positive_int, print_json, speed_value)
 
 #: Worker processes of a map unless told (at most the machine's cores): its designs are
 #: independent cold solves, so two cores halve its time.
@@ -25,13 +24,7 @@ DEFAULT_WORKERS = 2
 
 
 def _workers(asked: int | None) -> int:
-    if asked is not None:
-        return asked
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except AttributeError:       # not on Linux
-        cores = os.cpu_count() or 1
-    return max(1, min(DEFAULT_WORKERS, cores))
+    return local_workers(asked, DEFAULT_WORKERS)
 
 
 def _floats(text: str) -> list[float]:

@@ -13,8 +13,16 @@ from ..traction import (CHART_PARAMETERS, CHART_POINTS, SPEED_RANGE, mu_curve,
 from ..units import display
 from .summary import in_units
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, Ticker, add_case_arguments,
-                     add_quiet_argument, add_units_argument, case_from, model_options,
-                     options_epilog, output_folder, positive_int, print_json, speed_value)
+                     add_quiet_argument, add_units_argument, case_from, local_workers,
+                     model_options, options_epilog, output_folder, positive_int, print_json,
+                     speed_value)
+
+#: Processes of the speed scan unless told (at most the machine's cores): this one walks
+#: the low speeds while a worker walks the rest and refines its crossing. The base case's
+#: fe2d search on 2 quiet cores: 3.35-3.85 -> 2.32-3.16 s, for about 10 % more CPU (the
+#: worker's cold start, its fork); with one core busy with another job they lost, 3.6-3.9 s
+#: serial against 4.0-4.5 s, and with two it was a toss-up (3.5-6.5 against 3.2-6.9 s).
+DEFAULT_WORKERS = 2
 
 
 def add_parser(subparsers) -> None:
@@ -30,15 +38,20 @@ def add_parser(subparsers) -> None:
                    help=f"scan to (m/s or with a unit; default {SPEED_RANGE[1]:g} m/s)")
     p.add_argument("--json", action="store_true",
                    help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
-                        "speed_peak, bracket, evaluations, message; units: SI)")
+                        "speed_peak, bracket, scanned, evaluations, message; units: SI)")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR")
     p.add_argument("--points", type=positive_int, default=CHART_POINTS,
                    help=f"points per parameter in the chart (default {CHART_POINTS})")
-    p.add_argument("--workers", type=positive_int, default=1,
+    p.add_argument("--workers", type=positive_int, default=None,
                    help="local processes for the speed scan and the chart's searches "
-                        "(default 1; the same answers, to rounding)")
+                        f"(default {DEFAULT_WORKERS} where the machine has {DEFAULT_WORKERS} "
+                        "cores or more, else 1: they pay only where both are idle; the same "
+                        "answers within the stated errors: a worker starts cold)")
+    p.add_argument("--full-scan", action="store_true",
+                   help="solve every speed up to --max-speed (the peak is then the whole "
+                        "range's) instead of stopping at the first speed below --mu-min")
     add_units_argument(p)
     add_quiet_argument(p)
 
@@ -48,10 +61,11 @@ def run(args) -> int:
     options = model_options(args)
     chart_dir = output_folder(args.chart, "--chart") if args.chart else None
     speed_range = (args.min_speed, args.max_speed)
+    workers = local_workers(args.workers, DEFAULT_WORKERS)
     with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
         out = traction_loss_speed(case, args.mu_min, model=args.model,
                                   speed_range=speed_range, options=options,
-                                  workers=args.workers)
+                                  workers=workers, full_scan=args.full_scan)
     if args.json:
         print_json(out.to_dict())
     else:
@@ -64,7 +78,7 @@ def run(args) -> int:
 
         models = list(dict.fromkeys(["closed-form", args.model]))
         rows = traction_loss_table(case, out.mu_min, models, n=args.points, options=options,
-                                   progress=Progress(args.quiet), workers=args.workers)
+                                   progress=Progress(args.quiet), workers=workers)
         speeds = np.geomspace(max(args.min_speed, 1e-3), args.max_speed, 40)
         curves = {m: mu_curve(case, m, speeds, options if m == args.model else None)
                   for m in models}

@@ -7,7 +7,9 @@ The coefficients (``centres``, ``scales`` l, ``trend`` b, ``weights`` a, the out
 and spread) are fitted by :mod:`webfem.studies.fit_build` and stored in an ``.npz`` file;
 the centres x_i are the training points or, in a compressed fit, a subset of them with
 weights fitted to all (subset of regressors). :class:`Stack` evaluates several kernels, each
-its own centres and length scales, in one pass.
+its own centres and length scales, in one pass. Other radial functions (:data:`KINDS`: a
+Gaussian and a rational-quadratic, cheaper to evaluate; a thin-plate spline) serve the
+build's comparisons (docs/fit.md).
 
 Examples
 --------
@@ -25,13 +27,18 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-__all__ = ["Kernel", "Stack", "matern52", "thin_plate", "KINDS", "blas_one_thread"]
+__all__ = ["Kernel", "Stack", "matern52", "gaussian", "thin_plate", "KINDS", "STACKED",
+           "blas_one_thread"]
 
 _SQRT5 = np.sqrt(5.0)
 #: From this many points the kernel runs its matrix products on one BLAS thread: blocks of a
 #: few hundred points are too small to share, and on a loaded machine the threads' waiting
 #: cost several times the work (measured: 4e4 against 2e5 points/s; docs/fit.md, "Speed").
 ONE_THREAD_FROM = 64
+#: Points per block of :class:`Stack`'s evaluation: its work arrays (a few hundred kB each)
+#: then stay near the core (measured on 2048 points, one thread: 2.5-3.1 us a point at 128,
+#: 3.2-3.6 at 256, 3.9-4.9 at 512, 2.9 at 32).
+CHUNK = 128
 
 
 @lru_cache(maxsize=1)
@@ -53,6 +60,22 @@ def matern52(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
     return (1.0 + r + r * r / 3.0) * np.exp(-r)
 
 
+def gaussian(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
+    """The squared-exponential kernel exp(-r^2 / 2) between rows of A and B, r scaled by
+    ``scales``: no square root, so one exponential per centre is its whole radial work."""
+    a, b = A / scales, B / scales
+    d2 = (np.sum(a * a, 1)[:, None] + np.sum(b * b, 1)[None, :] - 2.0 * a @ b.T)
+    return np.exp(-0.5 * np.maximum(d2, 0.0))
+
+
+def cauchy(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
+    """The rational-quadratic kernel of exponent 1, 1 / (1 + r^2 / 2), between rows of A
+    and B, r scaled by ``scales``: one division per centre."""
+    a, b = A / scales, B / scales
+    d2 = (np.sum(a * a, 1)[:, None] + np.sum(b * b, 1)[None, :] - 2.0 * a @ b.T)
+    return 1.0 / (1.0 + 0.5 * np.maximum(d2, 0.0))
+
+
 def thin_plate(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
     """The thin-plate spline r^2 log r between rows of A and B, r scaled by ``scales``."""
     a, b = A / scales, B / scales
@@ -62,7 +85,11 @@ def thin_plate(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
 
 
 #: The radial functions a :class:`Kernel` may use, by the name its file stores.
-KINDS = {"matern52": matern52, "thin-plate": thin_plate}
+KINDS = {"matern52": matern52, "gaussian": gaussian, "cauchy": cauchy,
+         "thin-plate": thin_plate}
+#: The kinds :class:`Stack` evaluates in one pass, with the factor its product carries:
+#: (sqrt5 r)^2 for the Matern kernel, -r^2 / 2 for the Gaussian.
+STACKED = {"matern52": 5.0, "gaussian": -0.5, "cauchy": 0.5}
 
 
 @dataclass(frozen=True)
@@ -143,24 +170,30 @@ class Kernel:
 
 
 class Stack:
-    """Several Matern-5/2 :class:`Kernel` s (each its own centres and length scales)
-    evaluated in one pass: one matrix product gives every kernel's squared distances
-    (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x^2, x and 1 side by side), one sweep of the
-    radial function covers all the centres, then each kernel's weights on its own columns;
-    the outputs side by side, in the kernels' order. The same values as calling each kernel
-    to rounding, with the per-call costs paid once.
+    """Several :class:`Kernel` s of one of the :data:`STACKED` kinds (each its own centres
+    and length scales) evaluated in one pass: one matrix product gives every kernel's
+    squared distances (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x^2, x and 1 side by side), one
+    sweep of the radial function covers all the centres, then each kernel's weights on its
+    own columns; the outputs side by side, in the kernels' order. The same values as calling
+    each kernel to rounding, with the per-call costs paid once.
 
-    ``radial``: the type the radial function (sqrt, exp and its polynomial, the bulk of the
-    work) is evaluated in; the distances and the weight product stay in float64, so each
-    point's answer does not depend on the others in the batch."""
+    ``radial``: the type the radial function (the Matern kernel's sqrt, exp and polynomial,
+    the bulk of its work; the Gaussian's exp) is evaluated in; the distances and the weight
+    product stay in float64, so each point's answer does not depend on the others in the
+    batch."""
 
     def __init__(self, kernels, radial=np.float64):
         kernels = list(kernels)
-        if any(k.kind != "matern52" for k in kernels):
-            raise ValueError("Stack evaluates Matern-5/2 kernels only")
+        kinds = {k.kind for k in kernels}
+        if len(kinds) != 1 or not kinds <= set(STACKED):
+            raise ValueError(f"Stack evaluates kernels of one kind of {sorted(STACKED)}, "
+                             f"not {sorted(kinds)}")
+        self.kind = kinds.pop()
         # kept to tell whether a fit still holds these kernels (fitted.predict)
         self.kernels = tuple(kernels)
         self.radial = np.dtype(radial)
+        # the Matern polynomial's 1/3 goes into the weights
+        scale = 3.0 if self.kind == "matern52" else 1.0
         cols, self._blocks = [], []
         start = out = 0
         for k in kernels:
@@ -171,42 +204,68 @@ class Stack:
             _, _, w, t0, t1 = k._prepared
             self._blocks.append((slice(start, start + len(k.centres)),
                                  slice(out, out + w.shape[1]),
-                                 np.ascontiguousarray(w / 3.0), t0, t1))
+                                 np.ascontiguousarray(w / scale), t0,
+                                 t1 if t1.any() else None))
             start += len(k.centres)
             out += w.shape[1]
-        # times 5: the product is (sqrt5 r)^2, which the radial function takes as it comes
-        self._A = np.ascontiguousarray(5.0 * np.hstack(cols))
+        # the product is the radial function's argument as it takes it
+        self._A = np.ascontiguousarray(STACKED[self.kind] * np.hstack(cols))
         self.n_outputs = out
 
-    def __call__(self, x: np.ndarray, chunk: int = 256) -> np.ndarray:
+    def __call__(self, x: np.ndarray, chunk: int = CHUNK) -> np.ndarray:
         x = np.atleast_2d(np.asarray(x, float))
         if len(x) < ONE_THREAD_FROM:
-            return self._run(x, chunk)
+            return self.evaluate(x, chunk)
         with blas_one_thread():
-            return self._run(x, chunk)
+            return self.evaluate(x, chunk)
 
-    def _run(self, x: np.ndarray, chunk: int) -> np.ndarray:
-        out = np.empty((len(x), self.n_outputs))
-        xx = np.hstack([x * x, x, np.ones((len(x), 1))])
+    def evaluate(self, x: np.ndarray, chunk: int = CHUNK) -> np.ndarray:
+        """The outputs at unit-box points ``x`` (n, m), BLAS's threads as the caller left
+        them (:meth:`__call__` sets one from :data:`ONE_THREAD_FROM` points; threads
+        evaluating blocks of points side by side set it once around them all)."""
+        n = len(x)
+        out = np.empty((n, self.n_outputs))
+        xx = np.hstack([x * x, x, np.ones((n, 1))])
         f32 = self.radial != np.float64
-        for i in range(0, len(x), chunk):
-            r = xx[i:i + chunk] @ self._A
-            np.maximum(r, 0.0, out=r)        # rounding may leave a coincident point below 0
-            if f32:
-                r = r.astype(self.radial)
-            np.sqrt(r, out=r)
-            e = np.negative(r)
-            np.exp(e, out=e)
-            phi = r + 3.0                    # 3 (1 + r + r^2/3) e^-r; the 1/3 is in the weights
-            phi *= r
-            phi += 3.0
-            phi *= e
-            if f32:
-                phi = phi.astype(np.float64)
-            xi = x[i:i + chunk]
+        # one set of work arrays per call, reused by every block (a call is one thread's:
+        # fitted.predict runs blocks of points on several)
+        c = min(chunk, n)
+        d2 = np.empty((c, self._A.shape[1]))
+        r = np.empty(d2.shape, self.radial) if f32 else d2
+        e, poly = np.empty_like(r), np.empty_like(r)
+        phi = np.empty(d2.shape) if f32 else poly
+        for i in range(0, n, c):
+            k = min(c, n - i)
+            dk, rk, ek, pk, phik = d2[:k], r[:k], e[:k], poly[:k], phi[:k]
+            np.matmul(xx[i:i + k], self._A, out=dk)
+            if self.kind == "gaussian":
+                # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
+                np.exp(dk, out=phik, dtype=self.radial, casting="unsafe")
+            elif self.kind == "cauchy":
+                dk += 1.0                    # 1 + r^2/2
+                np.reciprocal(dk, out=phik)
+            else:
+                self._matern52(dk, rk, ek, pk, phik)
+            xi = x[i:i + k]
             for cols, outs, w, t0, t1 in self._blocks:
-                o = out[i:i + chunk, outs]
-                np.matmul(phi[:, cols], w, out=o)
+                o = out[i:i + k, outs]
+                np.matmul(phik[:, cols], w, out=o)
                 o += t0
-                o += xi @ t1
+                if t1 is not None:           # a fit without a trend (the shipped one) skips it
+                    o += xi @ t1
         return out
+
+    @staticmethod
+    def _matern52(d2, r, e, poly, phi):
+        """phi = 3 (1 + r + r^2/3) e^-r of d2 = r^2, through r, e and poly (the radial type)."""
+        # rounding may leave a coincident point's square a little below 0; |.| is the
+        # cheapest clamp (the square root of a rounding error either way), and it makes the
+        # radial type's copy in the same pass
+        np.abs(d2, out=r, casting="same_kind")
+        np.sqrt(r, out=r)
+        np.negative(r, out=e)
+        np.exp(e, out=e)
+        np.add(r, 3.0, out=poly)             # the 1/3 is in the weights
+        poly *= r
+        poly += 3.0
+        np.multiply(poly, e, out=phi, casting="unsafe")     # back to float64

@@ -12,8 +12,9 @@ the contact law), so the friction constants and the speeds add no dimensions to 
 Its domain is the box of groups the campaign sampled and the default full physics on a
 smooth roller; outside it the model refuses (:class:`OutsideDomain`, naming the group, its
 value and its range), and auto moves on. Its stated errors (``error_h_center``, ...) are the
-95th percentile of the errors on a hold-out set never used in fitting, per region of the
-predicted smallest gap over the roughness (flying, landing, resting).
+95th percentile of the errors on a hold-out set never used in fitting, per region: the
+predicted smallest gap over the roughness (flying, landing, resting) and the bending group
+Dn (flexible < 1, 1-100, stiff > 100; :func:`region_of`).
 
 Examples
 --------
@@ -25,7 +26,9 @@ Examples
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from functools import lru_cache
 from pathlib import Path
 from types import SimpleNamespace
@@ -40,12 +43,13 @@ from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result
 from ..summary import Summary
 from . import fit_groups as fg
-from .fit_kernel import Kernel, Stack
+from .fit_kernel import ONE_THREAD_FROM, STACKED, Kernel, Stack, blas_one_thread
 from .options import FittedOptions
 
 __all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "read_profiles",
+           "threads", "BLOCK",
            "OutsideDomain",
-           "NAME",
+           "NAME", "region_of", "region_name",
            "COEFFICIENTS", "coefficients", "evaluator"]
 
 NAME = "fitted"
@@ -75,6 +79,8 @@ def coefficients(path: str | None = None) -> dict:
     kernel = Kernel.from_arrays(d, "k")
     return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"], "hi": d["hi"],
             "edges": d["region_edges"], "errors": d["region_errors"],
+            # a file from before the Dn bands states one error per gap region
+            "dn_edges": d.get("dn_edges", np.empty(0)),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
             "scalar_names": names}
 
@@ -88,43 +94,109 @@ RADIAL = np.float32
 
 def evaluator(kernel, scalars=()) -> Stack | None:
     """The profile's kernel and the scalars' evaluated in one pass (:class:`Stack`, radial
-    function in :data:`RADIAL`), or None where one of them is not a Matern-5/2
-    :class:`Kernel` (comparisons of other methods)."""
+    function in :data:`RADIAL`), or None where they are not :class:`Kernel` s of one
+    kind the stack evaluates (comparisons of other methods)."""
     kernels = [kernel, *scalars]
-    if all(isinstance(k, Kernel) and k.kind == "matern52" for k in kernels):
+    if all(isinstance(k, Kernel) for k in kernels) and len({k.kind for k in kernels}) == 1 \
+            and kernel.kind in STACKED:
         return Stack(kernels, radial=RADIAL)
     return None
 
 
-def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
-    """The scaled profile of groups ``G`` ((n, 8)): ``H`` and ``P`` (n, nodes), ``H_min``,
-    ``s_min`` (position over the wrap, -1/2 entry) and ``region`` (index into the stated
-    errors); and, where the fit has them (else None), the centre gap ``H_center`` and the
-    contact ``share`` fitted on their own, ``H_min`` then also from its own fit (capped by
-    the profile's smallest node). No domain check (:func:`fit_groups.outside_rows`)."""
-    fit = fit or coefficients()
-    x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
-    n = len(fg.NODES)
+#: Points per block of :func:`predict`'s work: the block's arrays stay in cache, and the
+#: blocks are shared among :func:`threads` threads (numpy's passes and BLAS release the GIL).
+BLOCK = 2048
+
+
+def threads() -> int:
+    """How many threads :func:`predict` shares its blocks among: the cores this process
+    may run on (at most 8)."""
+    try:
+        n = len(os.sched_getaffinity(0))
+    except AttributeError:        # not on Linux
+        n = os.cpu_count() or 1
+    return max(1, min(n, 8))
+
+
+_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
+
+
+def _pool(n: int) -> ThreadPoolExecutor:
+    """A pool of ``n`` threads for this process (a forked child, e.g. a campaign's worker,
+    makes its own: the parent's threads are not in it)."""
+    key = (os.getpid(), n)
+    if key not in _POOLS:
+        _POOLS[key] = ThreadPoolExecutor(n, thread_name_prefix="webfem-fitted")
+    return _POOLS[key]
+
+
+def _stack_of(fit: dict) -> Stack | None:
+    """The fit's one-pass stack, or a new one where its kernels are not the stack's."""
     kernels = (fit["kernel"], *fit.get("scalars", ()))
     stack = fit.get("stack")
     if stack is None or len(stack.kernels) != len(kernels) or \
             any(a is not b for a, b in zip(stack.kernels, kernels)):
         # a fit whose kernels were swapped (a build's candidate) must not reuse the stack
         stack = evaluator(fit["kernel"], fit.get("scalars", ()))
+    return stack
+
+
+def predict(G: np.ndarray, fit: dict | None = None, *,
+            n_threads: int | None = None) -> dict[str, np.ndarray]:
+    """The scaled profile of groups ``G`` ((n, 8)): ``H`` and ``P`` (n, nodes), ``H_min``,
+    ``s_min`` (position over the wrap, -1/2 entry) and ``region`` (index into the stated
+    errors); and, where the fit has them (else None), the centre gap ``H_center`` and the
+    contact ``share`` fitted on their own, ``H_min`` then also from its own fit (capped by
+    the profile's smallest node). No domain check (:func:`fit_groups.outside_rows`).
+
+    More than :data:`BLOCK` points are evaluated in blocks on ``n_threads`` threads
+    (default :func:`threads`); each point's answer is computed alone (row by row), so it
+    does not depend on the batch or the thread count (to rounding: tests/test_fitted.py)."""
+    fit = fit or coefficients()
+    G = np.atleast_2d(np.asarray(G, float))
+    stack = _stack_of(fit)
+    n = len(G)
+    if n <= BLOCK:
+        if n < ONE_THREAD_FROM:
+            return _predict(G, fit, stack)
+        with blas_one_thread():
+            return _predict(G, fit, stack)
+    starts = range(0, n, BLOCK)
+    n_threads = min(n_threads or threads(), len(starts))
+    # every block's BLAS on one thread: the blocks are the parallel work
+    with blas_one_thread():
+        if n_threads == 1:
+            parts = [_predict(G[i:i + BLOCK], fit, stack) for i in starts]
+        else:
+            parts = list(_pool(n_threads).map(
+                lambda i: _predict(G[i:i + BLOCK], fit, stack), starts))
+    return {k: None if parts[0][k] is None else np.concatenate([p[k] for p in parts])
+            for k in parts[0]}
+
+
+def _predict(G: np.ndarray, fit: dict, stack: Stack | None) -> dict[str, np.ndarray]:
+    """:func:`predict` of one block of points, BLAS threads left to the caller."""
+    x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
+    n = len(fg.NODES)
     if stack is not None:    # the profile, then every scalar, side by side
-        Y = stack(x)
+        Y = stack.evaluate(x)
         scalars = ()
     else:
         Y, scalars = fit["kernel"](x), fit.get("scalars", ())
-    G = np.asarray(G, float)
-    S = G[:, fg.GROUPS.index("S")][:, None]
-    H_c = S * np.log(G[:, fg.GROUPS.index("c")])[:, None]
-    base, base_min = fg.baseline(G)
-    # the fit is the remainder over the physical baseline, in the fit's gap variable
-    y_nodes = Y[:, :n] + fg.gap_to_fit(base, S, H_c)
-    y_min = Y[:, 2 * n] + fg.gap_to_fit(base_min, S[:, 0], H_c[:, 0])
-    H = fg.fit_to_gap(y_nodes, S, H_c)
-    H_min = np.minimum(fg.fit_to_gap(y_min, S[:, 0], H_c[:, 0]), H.min(axis=1))
+    S = G[:, fg.GROUPS.index("S")]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])
+    E, E_min = fg.baseline_sigmas(G)
+    E_center = E[:, n // 2].copy()
+    # the fit is the remainder over the physical baseline in the fit's gap variable,
+    # log((H - H_c) / S + FLOOR) (fit_groups.gap_to_fit; the baseline is never below H_c):
+    # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR), one exp, no log
+    H = np.exp(Y[:, :n])
+    E += fg.FLOOR_SIGMAS
+    H *= E
+    H -= fg.FLOOR_SIGMAS
+    H *= S[:, None]
+    H += H_c[:, None]
+    H_low = H.min(axis=1)
     H_center = share = None
     if fit.get("scalar_names"):
         # the quantities fitted on their own, the gaps in a variable without a floor
@@ -133,17 +205,54 @@ def predict(G: np.ndarray, fit: dict | None = None) -> dict[str, np.ndarray]:
         # kernels run side by side (a Stack), else come from kernels of their own
         Ys = np.column_stack([Y[:, 2 * n + 2:]] + [k(x) for k in scalars])
         own = dict(zip(fit["scalar_names"], Ys.T))
-        s0, c0 = S[:, 0], H_c[:, 0]
-        H_center = fg.asinh_to_gap(own["h_center"] + fg.gap_to_asinh(base[:, n // 2], s0, c0),
-                                   s0, c0)
+        H_center = fg.asinh_to_gap(own["h_center"] + np.arcsinh(E_center), S, H_c)
         # capped by the profile's smallest node, as the profile's own minimum is
-        H_min = np.minimum(fg.asinh_to_gap(own["h_min"] + fg.gap_to_asinh(base_min, s0, c0),
-                                           s0, c0), H.min(axis=1))
+        H_min = np.minimum(fg.asinh_to_gap(own["h_min"] + np.arcsinh(E_min), S, H_c), H_low)
         share = np.clip(own["contact_share"], 0.0, 1.0)
-    region = np.searchsorted(fit["edges"], H_min / S[:, 0])
+    else:
+        H_min = np.minimum(H_c + S * ((E_min + fg.FLOOR_SIGMAS) * np.exp(Y[:, 2 * n])
+                                      - fg.FLOOR_SIGMAS), H_low)
+    region = region_of(fit, H_min / S, G[:, fg.GROUPS.index("Dn")])
     return {"H": H, "P": Y[:, n:2 * n], "H_min": H_min,
             "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region,
             "H_center": H_center, "share": share}
+
+
+def region_of(fit: dict, ratio, Dn) -> np.ndarray:
+    """The row of the stated-error table for a predicted smallest gap over sigma ``ratio``
+    and a bending group ``Dn``: the gap region (``fit["edges"]``) times the number of Dn
+    bands, plus the band (``fit["dn_edges"]``; none in a file from before them).
+
+    >>> fit = {"edges": np.array([1.5, 4.0]), "dn_edges": np.array([1.0, 100.0])}
+    >>> region_of(fit, np.array([0.5, 10.0, 10.0]), np.array([0.1, 0.1, 500.0])).tolist()
+    [0, 6, 8]
+    """
+    dn_edges = fit.get("dn_edges", np.empty(0))
+    return (np.searchsorted(fit["edges"], ratio) * (len(dn_edges) + 1)
+            + np.searchsorted(dn_edges, Dn))
+
+
+_REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
+           "flying (h_min > 4 sigma)")
+
+
+def region_name(fit: dict, region: int) -> str:
+    """Words for row ``region`` of the stated-error table (:func:`region_of`).
+
+    >>> fit = {"edges": np.array([1.5, 4.0]), "dn_edges": np.array([1.0, 100.0])}
+    >>> region_name(fit, 8)
+    'flying (h_min > 4 sigma), stiff web (bending group Dn > 100)'
+    """
+    dn_edges = fit.get("dn_edges", np.empty(0))
+    gap, band = divmod(int(region), len(dn_edges) + 1)
+    name = _REGION[gap] if len(fit["edges"]) == 2 else f"gap region {gap}"
+    if len(dn_edges) == 2:
+        name += (", flexible web (bending group Dn < {0:g})",
+                 ", bending group Dn {0:g}-{1:g}",
+                 ", stiff web (bending group Dn > {1:g})")[band].format(*dn_edges)
+    elif len(dn_edges):
+        name += f", Dn band {band}"
+    return name
 
 
 def _stacked(v: dict[str, np.ndarray]) -> SimpleNamespace:
@@ -306,14 +415,9 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
     return _timed(res, time.perf_counter() - t0)[0]
 
 
-_REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
-           "flying (h_min > 4 sigma)")
-
-
 def _basis(fit: dict, region: int) -> str:
-    name = _REGION[region] if len(fit["edges"]) == 2 else f"region {region}"
     return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "
-            f"{name}; {fit['info']}")
+            f"{region_name(fit, region)}; {fit['info']}")
 
 
 def solve(case: Case, options: FittedOptions | None = None, **values) -> Result:

@@ -35,14 +35,21 @@ from __future__ import annotations
 import numpy as np
 
 from ..models import fit_groups as fg
-from ..models.fit_kernel import Kernel, blas_one_thread, matern52, thin_plate
+from ..models.fit_kernel import KINDS, Kernel, blas_one_thread, thin_plate
 from ..models.readout import error_scale
 
 __all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select_centres",
-           "sor_weights", "holdout_errors", "REGION_EDGES", "QUANTILE", "SCALARS", "CENTRES"]
+           "sor_weights", "holdout_errors", "REGION_EDGES", "DN_EDGES", "QUANTILE", "SCALARS",
+           "CENTRES", "KIND"]
 
 #: Regions of the predicted H_min / S: resting (< 1.5), landing, flying (> 4).
 REGION_EDGES = np.array([1.5, 4.0])
+#: Bands of the bending group Dn inside each of those regions (flexible < 1, 1-100, stiff
+#: > 100): the stated error is per (region, band) cell. Measured on the 321 hold-out points
+#: of the 1642-point campaign, the 95th percentiles of a flying web's h_min error are 0.39,
+#: 0.59 and 5.4 in the three bands: one table per gap region stated 1.02 for all three, 5
+#: times the true error of a stiff web and 2.6 times that of a flexible one.
+DN_EDGES = np.array([1.0, 100.0])
 #: The gap columns' remainders are clipped to +-CLIP before fitting: a few points whose web
 #: is pressed far below its contact gap (the floor) or flies far above the baseline would
 #: otherwise set the kernel's length scales for all (measured: the 90th percentile of the
@@ -75,6 +82,11 @@ HYPER_POINTS = 450
 #: within noise. A campaign with fewer training points keeps them all; ``webfem fit
 #: build`` reports the full fit's hold-out errors beside.
 CENTRES = (200, 400, 300)
+#: The kernels' radial function (:data:`webfem.models.fit_kernel.KINDS`; every function
+#: below takes ``kind``, default this). The Gaussian and the rational-quadratic (cauchy)
+#: evaluate 1.3 times as fast but measured a little worse on the hold-out set (medians
+#: 10-25 % higher in the gaps, within the bootstrap's noise; docs/fit.md, "Speed").
+KIND = "matern52"
 
 
 def targets(rows) -> np.ndarray:
@@ -113,15 +125,16 @@ def scalar_targets(rows) -> np.ndarray:
         [r["contact_share"] for r in rows]])
 
 
-def _loo(x, y, log_scales, log_nugget):
+def _loo(x, y, log_scales, log_nugget, kind=None):
     """Leave-one-out residuals (closed form) of the GP mean with these parameters."""
-    K = matern52(x, x, np.exp(log_scales)) + np.exp(log_nugget) * np.eye(len(x))
+    K = KINDS[kind or KIND](x, x, np.exp(log_scales)) + np.exp(log_nugget) * np.eye(len(x))
     Ki = np.linalg.inv(K)
     return (Ki @ y) / np.diag(Ki)[:, None]
 
 
 def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: int = 2,
-                    seed: int = 0, hyper_points: int | None = None) -> tuple[np.ndarray, float]:
+                    seed: int = 0, hyper_points: int | None = None,
+                    kind: str | None = None) -> tuple[np.ndarray, float]:
     """The length scales and nugget of the kernel minimising the weighted leave-one-out
     error (closed form) of the residuals ``res`` (n, k) at unit-box points ``x``, on
     ``hyper_points`` of them (a fixed draw by ``seed``; each leave-one-out costs an n x n
@@ -136,7 +149,7 @@ def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: i
 
     def cost(theta):
         try:
-            e = _loo(x[sub], res[sub], theta[:m], theta[m])
+            e = _loo(x[sub], res[sub], theta[:m], theta[m], kind)
         except np.linalg.LinAlgError:
             return 1e10
         return float(np.mean(e * e * w))
@@ -154,14 +167,15 @@ def hyperparameters(x: np.ndarray, res: np.ndarray, *, weights=None, restarts: i
     return np.exp(best.x[:m]), float(np.exp(best.x[m]))
 
 
-def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
+def select_centres(x: np.ndarray, scales: np.ndarray, m: int,
+                   kind: str | None = None) -> np.ndarray:
     """Indices of ``m`` rows of ``x`` chosen as centres by pivoted Cholesky on the kernel
     matrix: each next centre is the point the chosen ones' span predicts worst (largest
     remaining variance), so they spread evenly in the kernel's own metric; deterministic.
     Fewer where the chosen ones already span every point to rounding (repeated points)."""
     n = len(x)
     m = min(m, n)
-    K = matern52(x, x, scales)
+    K = KINDS[kind or KIND](x, x, scales)
     d = np.diag(K).copy()
     d0 = float(d.max())
     L = np.zeros((m, n))
@@ -178,11 +192,11 @@ def select_centres(x: np.ndarray, scales: np.ndarray, m: int) -> np.ndarray:
 
 
 def sor_weights(x: np.ndarray, res: np.ndarray, scales: np.ndarray, nugget: float,
-                idx: np.ndarray) -> np.ndarray:
+                idx: np.ndarray, kind: str | None = None) -> np.ndarray:
     """The subset-of-regressors weights at the centres ``x[idx]``, fitted to all points:
     min |K_nm a - res|^2 + nugget a' K_mm a (the GP mean's weights when idx is every
     point), by least squares on the stacked system (K_mm's Cholesky factor)."""
-    Knm = matern52(x, x[idx], scales)
+    Knm = KINDS[kind or KIND](x, x[idx], scales)
     Kmm = Knm[idx]
     L = np.linalg.cholesky(Kmm + 1e-10 * np.eye(len(idx)))
     A = np.vstack([Knm, np.sqrt(nugget) * L.T])
@@ -199,14 +213,16 @@ def _standardised(y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
                seed: int = 0, trend: bool = True, hyper_points: int | None = None,
-               centres: int | None = None, hyper=None) -> Kernel:
+               centres: int | None = None, hyper=None, kind: str | None = None) -> Kernel:
     """The interpolant of outputs ``y`` (n, k) at unit-box points ``x`` (n, m): linear trend
     by least squares, then the kernel's length scales and nugget minimising the weighted
     leave-one-out error of the trend's residuals (:func:`hyperparameters`; ``hyper``:
     given instead, as (scales, nugget)). ``hyper_points``: choose them on that many of the
     points, then solve for the weights on all of them. ``centres``: keep that many
     centres (:func:`select_centres`), their weights fitted to all the points
-    (:func:`sor_weights`); None keeps every point (the GP mean)."""
+    (:func:`sor_weights`); None keeps every point (the GP mean). ``kind``: the radial
+    function (:data:`KIND` by default)."""
+    kind = kind or KIND
     ys, y_mean, y_std = _standardised(y)
     A = np.hstack([np.ones((len(x), 1)), x])
     if trend:
@@ -215,15 +231,16 @@ def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
         trend = np.zeros((A.shape[1], ys.shape[1]))
     res = ys - A @ trend
     scales, nugget = hyper if hyper is not None else hyperparameters(
-        x, res, weights=weights, restarts=restarts, seed=seed, hyper_points=hyper_points)
+        x, res, weights=weights, restarts=restarts, seed=seed, hyper_points=hyper_points,
+        kind=kind)
     if centres is None or centres >= len(x):
-        K = matern52(x, x, scales) + nugget * np.eye(len(x))
+        K = KINDS[kind](x, x, scales) + nugget * np.eye(len(x))
         return Kernel(centres=x, scales=scales, trend=trend, weights=np.linalg.solve(K, res),
-                      y_mean=y_mean, y_std=y_std)
-    idx = select_centres(x, scales, centres)
+                      y_mean=y_mean, y_std=y_std, kind=kind)
+    idx = select_centres(x, scales, centres, kind)
     return Kernel(centres=x[idx], scales=scales, trend=trend,
-                  weights=sor_weights(x, res, scales, nugget, idx), y_mean=y_mean,
-                  y_std=y_std)
+                  weights=sor_weights(x, res, scales, nugget, idx, kind), y_mean=y_mean,
+                  y_std=y_std, kind=kind)
 
 
 def fit_thin_plate(x: np.ndarray, y: np.ndarray, scales: np.ndarray,
@@ -270,10 +287,13 @@ def holdout_errors(rows, fit: dict) -> dict[str, np.ndarray]:
     return errs
 
 
-def region_errors(errs: dict, n_regions: int = 3) -> np.ndarray:
-    """The stated error table (region x quantity): the :data:`QUANTILE` of the hold-out
-    errors in each region; a region with fewer than 5 hold-out points takes the largest
-    of all the quantile's regions' and the whole set's."""
+def region_errors(errs: dict,
+                  n_regions: int = (len(REGION_EDGES) + 1) * (len(DN_EDGES) + 1)) -> np.ndarray:
+    """The stated error table (region x quantity; a region is a cell of the predicted
+    H_min / S's :data:`REGION_EDGES` and Dn's :data:`DN_EDGES`, :func:`webfem.models.fitted.
+    region_of`): the :data:`QUANTILE` of the hold-out errors in each region; a region with
+    fewer than 5 hold-out points takes the largest of all the quantile's regions' and the
+    whole set's."""
     from ..models.fitted import QUANTITIES
     table = np.empty((n_regions, len(QUANTITIES)))
     overall = [np.percentile(errs[q], QUANTILE) for q in QUANTITIES]
@@ -287,12 +307,16 @@ def region_errors(errs: dict, n_regions: int = 3) -> np.ndarray:
     return table
 
 
-def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict:
+def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
+          extra_csv=None, kind: str | None = None) -> dict:
     """Fit the converged training rows of ``campaign_csv``, state the errors from its
     hold-out rows (or from the converged rows of ``holdout_csv``: the same points solved
-    again with the current physics, :func:`webfem.studies.fit_campaign.recheck`) and write
-    the coefficients to ``out_npz``; returns a report (sizes, the hold-out error
-    distribution per quantity, the stated table)."""
+    again with the current physics, :func:`webfem.studies.fit_campaign.recheck`), joined by
+    the converged rows of ``extra_csv`` (points of another design, all held out:
+    :func:`webfem.studies.fit_campaign.extra_holdout`), and write the coefficients to
+    ``out_npz``; returns a report (sizes, the hold-out error distribution per quantity, the
+    stated table). ``kind``: the kernels' radial function (:data:`KIND` by default; other
+    kinds for comparisons)."""
     import datetime
     from pathlib import Path
     from .. import __version__
@@ -310,6 +334,10 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     if rechecked:
         hold = sorted((r for r in typed(read_table(holdout_csv).rows) if r["converged"]),
                       key=lambda r: r["n"])
+    extra_rows = [] if extra_csv is None else sorted(
+        (r for r in typed(read_table(extra_csv).rows) if r["converged"]), key=lambda r: r["n"])
+    own_hold = len(hold)
+    hold = hold + extra_rows
     if len(train) < 4 or len(hold) < 1:
         raise InputError(f"{campaign_csv}: {len(train)} converged training and {len(hold)} "
                          "hold-out rows; the fit needs at least 4 and 1")
@@ -329,26 +357,30 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
     outputs = [y] + [ys[:, list(cols)] for cols in SCALAR_KERNELS]
     with blas_one_thread():
         hyper = [hyperparameters(x, _standardised(t)[0], restarts=restarts,
-                                 hyper_points=HYPER_POINTS) for t in outputs]
-        kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m)
+                                 hyper_points=HYPER_POINTS, kind=kind) for t in outputs]
+        kernel, *scalars = (fit_kernel(x, t, trend=False, hyper=h, centres=m, kind=kind)
                             for t, h, m in zip(outputs, hyper, CENTRES))
         # the full fit (every training point a centre) on the same length scales: the
         # report states what the compression costs on this campaign's hold-out set
-        full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h)
+        full, *full_scalars = (fit_kernel(x, t, trend=False, hyper=h, kind=kind)
                                for t, h in zip(outputs, hyper))
     span = Case().span_used
     ends = f"wrap.ends = span, {span:g} m" if span else "wrap.ends = held"
     if rechecked:
         # the training rows may come from an earlier physics: the errors are today's
         info = (f"trained on {len(train)} fe2d solutions of an earlier campaign; errors "
-                f"stated from {len(hold)} hold-out points solved again with webfem "
+                f"stated from {own_hold} hold-out points solved again with webfem "
                 f"{__version__}'s default physics ({ends}, smooth roller)")
     else:
         info = (f"trained on {len(train)} fe2d solutions (webfem {__version__}, default full "
-                f"physics: {ends}; smooth roller), {len(hold)} held out")
+                f"physics: {ends}; smooth roller), {own_hold} held out")
+    if extra_rows:
+        info += (f"; the errors stated from these and {len(extra_rows)} points of another "
+                 "design, all held out")
     kept = " / ".join(str(len(k.centres)) for k in (kernel, *scalars))
     info += f"; kernels of {kept} centres; {datetime.date.today().isoformat()}"
-    fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "scalars": scalars,
+    fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "dn_edges": DN_EDGES,
+           "scalars": scalars,
            "scalar_names": tuple(SCALARS[c] for cols in SCALAR_KERNELS for c in cols)}
     errs = holdout_errors(hold, fit)
     table = region_errors(errs)
@@ -359,7 +391,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
         extra.update(k.arrays(f"s{j}"))
     np.savez_compressed(out_npz, **kernel.arrays("k"), **extra,
                         scalar_names=np.array(fit["scalar_names"]), lo=lo, hi=hi,
-                        region_edges=REGION_EDGES, region_errors=table,
+                        region_edges=REGION_EDGES, dn_edges=DN_EDGES, region_errors=table,
                         physics=np.array(f"webfem {__version__}"), info=np.array(info),
                         holdout_groups=np.array([[r[f"g_{g}"] for g in fg.GROUPS]
                                                  for r in hold]),
@@ -369,8 +401,8 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None) -> dict
         return {q: np.percentile(e[q], [50, 90, 95, 100]).tolist() for q in QUANTITIES}
     return {"train": len(train), "holdout": len(hold), "failed": sum(
         1 for r in typed(read_table(campaign_csv).rows) if not r["converged"]),
-        "holdout_rechecked": rechecked,
+        "holdout_rechecked": rechecked, "holdout_extra": len(extra_rows),
         "percentiles_50_90_95_max": pct(errs), "stated": table.tolist(),
         "centres": [len(k.centres) for k in (kernel, *scalars)],
         "full_fit_percentiles_50_90_95_max": pct(errs_full),
-        "regions": np.bincount(errs["region"], minlength=3).tolist(), "info": info}
+        "regions": np.bincount(errs["region"], minlength=len(table)).tolist(), "info": info}

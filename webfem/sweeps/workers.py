@@ -195,10 +195,14 @@ class Processes:
         except BaseException:
             for fut in futures:
                 fut.cancel()
-            # running chunks would finish first: end the workers (no public API before 3.14)
-            for proc in list((getattr(self.pool, "_processes", None) or {}).values()):
-                proc.terminate()
+            self.stop()
             raise
+
+    def stop(self):
+        """End the workers now (Ctrl-C, an error): running tasks would finish first."""
+        # no public API before 3.14
+        for proc in list((getattr(self.pool, "_processes", None) or {}).values()):
+            proc.terminate()
 
     def close(self):
         self.pool.shutdown(wait=True, cancel_futures=True)

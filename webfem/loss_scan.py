@@ -1,0 +1,178 @@
+"""The traction-loss search's solves: the scan of roller speeds and the root find after it.
+
+:func:`scan` walks the speeds upwards with continuation and stops at the first crossing (a
+speed where mu is below the threshold after having reached it): the speeds above cannot
+move it. On several processes this process walks the lowest speeds while each worker walks
+the next run from a cold start, stops at a crossing of its own, and refines it right away
+(:func:`refine`) while the runs below are still being walked: where it is the scan's first
+crossing, the root find is done when the scan is.
+"""
+
+from __future__ import annotations
+
+from .api import solve_along
+from .case import Case
+from .errors import ConvergenceError
+from .models.options import Options
+
+__all__ = ["scan", "refine", "crossing", "LOW_SHARE"]
+
+#: Models that answer a point in about a millisecond or less: a worker process would cost
+#: more than it saves, so their scans stay in this process whatever ``workers`` says.
+_AT_ONCE = ("closed-form", "fitted")
+
+#: Share of a two-process scan's speeds walked by the calling process: the low ones, which
+#: cost more per point (the web rests on its asperities; 0.12-0.37 s against 0.04-0.26 s
+#: above 5 m/s for fe2d on the base case), while the worker pays a cold start and the root
+#: find. The base case's fe2d search (24 speeds, crossing at 23.4 m/s): with 0.375 this
+#: process walks 9 speeds in 1.67 s CPU, the worker 9 and the root find in 1.83 s; with
+#: 0.42, 10 in 1.85 s against 8 and the root find in 1.84 s.
+LOW_SHARE = 0.375
+
+
+def crossing(mu, mu_min: float) -> int | None:
+    """Index of the first value below ``mu_min`` after one at or above it (NaN is neither),
+    or None."""
+    reached = False
+    for i, m in enumerate(mu):
+        if m >= mu_min:
+            reached = True
+        elif reached and m < mu_min:
+            return i
+    return None
+
+
+def scan(case: Case, speeds, model: str, opts: Options, workers: int = 1,
+         stop: float | None = None, xtol: float = 1e-3):
+    """Results at ``speeds`` in order with continuation, the number of solves made, and a
+    worker's refinement of the first crossing (None: refine it with :func:`refine`).
+
+    A failed solve is an error naming its speed (a scan with a hole could miss the
+    crossing). ``stop``: end the walk at the first crossing of ``stop``
+    (:func:`crossing`); the results then end there. ``workers`` > 1: in runs of
+    consecutive speeds (:func:`_in_processes`), the same results within the model's
+    stated errors; the refinement, if any, is ``((a, b), speed, cache)`` as
+    :func:`refine`'s between the scan speeds ``a`` and ``b``, to ``xtol``.
+    """
+    if workers > 1 and len(speeds) > 2 and model not in _AT_ONCE:
+        return _in_processes(case, speeds, model, opts, workers, stop, xtol)
+    out, err = _walk(case, speeds, model, opts, stop=stop)
+    if err is not None:
+        raise err
+    return out, len(out), None
+
+
+def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b,
+           mu_min: float, xtol: float):
+    """Brent's method for the speed where mu crosses ``mu_min`` between the solved speeds
+    ``a < b`` (results ``at_a`` and ``at_b``), to ``xtol`` relative to ``a``: the speed and
+    every result by speed (the two given first; the others are the solves made)."""
+    # imported here: on two processes the worker that refines pays for it (0.05 s), not
+    # the command's start
+    from scipy.optimize import brentq
+
+    # the bracket's ends are the scan's own answers: Brent's first two evaluations read
+    # them (solving them again cost 0.6 s of the base case's 6-9 s fe2d search)
+    cache = {a: at_a, b: at_b}
+
+    def f(u):
+        if u not in cache:
+            # each evaluation starts from the nearest speed solved so far
+            nearest = cache[min(cache, key=lambda v: abs(v - u))]
+            out, err = _walk(case, [u], model, opts, initial=nearest)
+            if err is not None:
+                raise err
+            cache[u] = out[0]
+        return cache[u]["mu"] - mu_min
+
+    return float(brentq(f, a, b, xtol=xtol * a, rtol=1e-10)), cache
+
+
+def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
+          stop: float | None = None):
+    """:func:`scan`'s serial walk: ``(results, None)``, or the results before a solve that
+    raised and its error (a ConvergenceError naming its speed): returned, so a worker sends
+    it back with the results before it."""
+    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    out: list = []
+    try:
+        for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):
+            out.append(res)
+            if stop is not None and crossing([r["mu"] for r in out], stop) is not None:
+                break
+    except ConvergenceError as err:
+        u = float(speeds[len(out)])
+        return out, ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
+                                     f"{u:.4g} m/s did not converge ({err})", err.result,
+                                     err.history)
+    except Exception as err:   # noqa: BLE001 - the caller raises it where the scan needs it
+        return out, err
+    return out, None
+
+
+def _run(case: Case, speeds, model: str, opts: Options, stop, xtol: float):
+    """One run of :func:`_in_processes` in a worker: :func:`_walk`, then :func:`refine` at a
+    crossing of its own. Returns the slim results, the error, the refinement (None where
+    there is no crossing or a solve of the root find failed: the caller's, should it need
+    it) and the root find's solves."""
+    out, err = _walk(case, speeds, model, opts, stop=stop)
+    k = None if stop is None or err is not None else crossing([r["mu"] for r in out], stop)
+    refined, made = None, 0
+    if k is not None:
+        a, b = float(speeds[k - 1]), float(speeds[k])
+        try:
+            speed, cache = refine(case, model, opts, a, b, out[k - 1], out[k], stop, xtol)
+        except ConvergenceError:
+            pass
+        else:
+            made = len(cache) - 2
+            refined = ((a, b), speed, {u: r.slim() for u, r in cache.items()})
+    return [r.slim() for r in out], err, refined, made
+
+
+def _in_processes(case: Case, speeds, model: str, opts: Options, workers: int,
+                  stop: float | None, xtol: float):
+    """:func:`scan` in ``workers`` runs of consecutive speeds, each with continuation and
+    each stopping at a crossing of its own: this process walks the lowest run while
+    worker processes walk the others (each from a cold start: a cold solve ends where a
+    continued one does, on a mesh of its own) and refine their crossings. A run ends early
+    only at a crossing of its own, so the scan's first crossing comes before any gap; the
+    count of solves includes those made past it."""
+    from threadpoolctl import threadpool_limits
+
+    from .sweeps.workers import Processes
+
+    n = len(speeds)
+    first = max(1, round((LOW_SHARE if workers == 2 else 1.0 / workers) * n))
+    cuts = [first + round(i * (n - first) / (workers - 1)) for i in range(workers)]
+    runs = [(a, b) for a, b in zip(cuts, cuts[1:]) if b > a]
+    pool = Processes(len(runs))
+    try:
+        futures = [pool.pool.submit(_run, case, speeds[a:b], model, opts, stop, xtol)
+                   for a, b in runs]
+        with threadpool_limits(limits=1):    # one BLAS thread here too, as in the workers
+            low, err = _walk(case, speeds[:first], model, opts, stop=stop)
+        got = [f.result() for f in futures]
+    except BaseException:
+        pool.stop()
+        raise
+    finally:
+        pool.close()
+    solved = len(low) + sum(len(res) + made for res, _, _, made in got)
+    # the runs end to end up to the first failure; where a run ended early at a crossing of
+    # its own, the next one's results follow a gap, but the crossing found below comes
+    # before it
+    out, why = low, err
+    for res, failed, _, _ in got:
+        if why is not None:
+            break
+        out = out + res
+        why = failed
+    j = None if stop is None else crossing([r["mu"] for r in out], stop)
+    if j is not None:
+        bracket = (float(speeds[j - 1]), float(speeds[j]))
+        refined = next((r for _, _, r, _ in got if r is not None and r[0] == bracket), None)
+        return out[:j + 1], solved, refined
+    if why is not None:    # before any crossing: the serial scan would have raised it too
+        raise why
+    return out, solved, None
