@@ -63,7 +63,7 @@ def fe2d_targets(runs: int = 3):
     print(f"  the same sweep on 2 processes: {t2:.2f} s (median of {runs}; {t / t2:.2f}x "
           f"serial), {sum(bool(r['converged']) for r in rows)}/24 converged")
     print(target("24-point fe2d sweep, 2 processes", t2, 4.0))
-    for extra in ([], ["--workers", "2"]):
+    for extra in (["--workers", "1"], ["--workers", "2"]):   # serial, and the 2-core default
         t0 = time.perf_counter()
         subprocess.run([sys.executable, "-m", "webfem", "traction-loss", "cases/base.toml",
                         "--mu-min", "0.1", "--model", "fe2d"] + extra, check=True,

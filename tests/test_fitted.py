@@ -559,3 +559,9 @@ def test_other_kernels_stack_and_fit_as_the_generic_formula(kind):
     assert np.abs(k(xt) - truth).max() < 0.1
     with pytest.raises(ValueError, match="one kind"):
         Stack([k, fb.fit_kernel(x, y, trend=False, restarts=0)])
+
+
+@pytest.mark.parametrize("bad", [0, -1, 2.5, True])
+def test_predict_refuses_a_bad_thread_count_naming_it(bad):
+    with pytest.raises(ValueError, match="n_threads"):
+        fitted.predict(fc.design(3, seed=1), n_threads=bad)

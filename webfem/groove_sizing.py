@@ -325,7 +325,10 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
 
     row = partial(_loss_row, case, mu_min, opts, shapes,
                   dict(speed_range=speed_range, n_scan=n_scan, xtol=xtol))
-    sig = _signature("traction-loss speed", case, opts, len(shapes), mu_min=mu_min,
+    # the scan stops at its first crossing (since the loss_scan module): a store made by a
+    # full scan must not be resumed by it
+    sig = _signature("traction-loss speed", case, opts, len(shapes), scan="first crossing",
+                     mu_min=mu_min,
                      pitches=pitches, land_fractions=land_fractions, depth=float(depth),
                      speed_range=list(speed_range), n_scan=n_scan, xtol=xtol)
     rows = _run(row, len(shapes), store, sig, LOSS_COLUMNS, ("pitch", "width", "depth"),

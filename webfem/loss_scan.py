@@ -2,10 +2,12 @@
 
 :func:`scan` walks the speeds upwards with continuation and stops at the first crossing (a
 speed where mu is below the threshold after having reached it): the speeds above cannot
-move it. On several processes this process walks the lowest speeds while each worker walks
-the next run from a cold start, stops at a crossing of its own, and refines it right away
-(:func:`refine`) while the runs below are still being walked: where it is the scan's first
-crossing, the root find is done when the scan is.
+move it. An FE scan walks the speeds in two runs, the lowest :data:`LOW_SHARE` and the
+rest, the second from a cold start, on one process or two: so its answer is the same to the
+bit whatever the machine's cores. On two, this process walks the low run while a worker
+walks the other, stops at a crossing of its own and refines it right away (:func:`refine`)
+while the low run is still being walked: where it is the scan's first crossing, the root
+find is done when the scan is.
 """
 
 from __future__ import annotations
@@ -49,13 +51,14 @@ def scan(case: Case, speeds, model: str, opts: Options, workers: int = 1,
 
     A failed solve is an error naming its speed (a scan with a hole could miss the
     crossing). ``stop``: end the walk at the first crossing of ``stop``
-    (:func:`crossing`); the results then end there. ``workers`` > 1: in runs of
-    consecutive speeds (:func:`_in_processes`), the same results within the model's
-    stated errors; the refinement, if any, is ``((a, b), speed, cache)`` as
-    :func:`refine`'s between the scan speeds ``a`` and ``b``, to ``xtol``.
+    (:func:`crossing`); the results then end there. An FE model's speeds are walked in two
+    runs (:func:`_in_runs`), the second from a cold start, on a worker process where
+    ``workers`` > 1 (more than 2 are not used): the same results either way; the worker's
+    refinement, if any, is ``((a, b), speed, cache)`` as :func:`refine`'s between the scan
+    speeds ``a`` and ``b``, to ``xtol``.
     """
-    if workers > 1 and len(speeds) > 2 and model not in _AT_ONCE:
-        return _in_processes(case, speeds, model, opts, workers, stop, xtol)
+    if len(speeds) > 2 and model not in _AT_ONCE:
+        return _in_runs(case, speeds, model, opts, workers > 1, stop, xtol)
     out, err = _walk(case, speeds, model, opts, stop=stop)
     if err is not None:
         raise err
@@ -122,7 +125,7 @@ def _run(case: Case, speeds, model: str, opts: Options, stop, xtol: float):
         a, b = float(speeds[k - 1]), float(speeds[k])
         try:
             speed, cache = refine(case, model, opts, a, b, out[k - 1], out[k], stop, xtol)
-        except ConvergenceError:
+        except Exception:   # noqa: BLE001 - the caller refines again if it needs this one
             pass
         else:
             made = len(cache) - 2
@@ -130,40 +133,60 @@ def _run(case: Case, speeds, model: str, opts: Options, stop, xtol: float):
     return [r.slim() for r in out], err, refined, made
 
 
-def _in_processes(case: Case, speeds, model: str, opts: Options, workers: int,
-                  stop: float | None, xtol: float):
-    """:func:`scan` in ``workers`` runs of consecutive speeds, each with continuation and
-    each stopping at a crossing of its own: this process walks the lowest run while
-    worker processes walk the others (each from a cold start: a cold solve ends where a
-    continued one does, on a mesh of its own) and refine their crossings. A run ends early
-    only at a crossing of its own, so the scan's first crossing comes before any gap; the
-    count of solves includes those made past it."""
-    from threadpoolctl import threadpool_limits
-
-    from .sweeps.workers import Processes
-
+def _in_runs(case: Case, speeds, model: str, opts: Options, parallel: bool,
+             stop: float | None, xtol: float):
+    """:func:`scan` in two runs of consecutive speeds, each with continuation and each
+    stopping at a crossing of its own: the lowest :data:`LOW_SHARE` of the speeds, then the
+    rest from a cold start (a cold solve ends where a continued one does, on a mesh of its
+    own). ``parallel``: a worker process walks the second run (and refines its crossing)
+    while this one walks the first; else this process walks both, the second only where the
+    first has no crossing. The results are the same either way (the worker's refinement
+    is the root find this process would make), so the answer does not depend on the
+    machine's cores. A run ends early only at a crossing of its own, so the scan's first
+    crossing comes before any gap; the count of solves includes those made past it. A
+    worker that dies is replaced by the same walk here."""
     n = len(speeds)
-    first = max(1, round((LOW_SHARE if workers == 2 else 1.0 / workers) * n))
-    cuts = [first + round(i * (n - first) / (workers - 1)) for i in range(workers)]
-    runs = [(a, b) for a, b in zip(cuts, cuts[1:]) if b > a]
-    pool = Processes(len(runs))
+    first = max(1, round(LOW_SHARE * n))
+    high = speeds[first:]
+    future = pool = None
+    if parallel:
+        from .sweeps.workers import Processes
+        pool = Processes(1)
+        future = pool.pool.submit(_run, case, high, model, opts, stop, xtol)
     try:
-        futures = [pool.pool.submit(_run, case, speeds[a:b], model, opts, stop, xtol)
-                   for a, b in runs]
-        with threadpool_limits(limits=1):    # one BLAS thread here too, as in the workers
+        if parallel:
+            from threadpoolctl import threadpool_limits
+            with threadpool_limits(limits=1):    # one BLAS thread here too, as in the worker
+                low, err = _walk(case, speeds[:first], model, opts, stop=stop)
+        else:
             low, err = _walk(case, speeds[:first], model, opts, stop=stop)
-        got = [f.result() for f in futures]
+        done = err is None and stop is not None and crossing([r["mu"] for r in low],
+                                                            stop) is not None
+        got = None
+        if future is not None:
+            from concurrent.futures.process import BrokenProcessPool
+            if done:
+                pool.stop()     # the crossing is in the low run: the worker's is not needed
+            else:
+                try:
+                    got = future.result()
+                except BrokenProcessPool:
+                    got = None   # the worker died (killed, out of memory): walk it here
+        if got is None and not done and err is None:
+            # kept whole: the root find continues from the solved states, as the worker's
+            res, failed = _walk(case, high, model, opts, stop=stop)
+            got = (res, failed, None, 0)
     except BaseException:
-        pool.stop()
+        if pool is not None:
+            pool.stop()
         raise
     finally:
-        pool.close()
-    solved = len(low) + sum(len(res) + made for res, _, _, made in got)
-    # the runs end to end up to the first failure; where a run ended early at a crossing of
-    # its own, the next one's results follow a gap, but the crossing found below comes
-    # before it
+        if pool is not None:
+            pool.close()
+    runs = [] if got is None else [got]
+    solved = len(low) + sum(len(res) + made for res, _, _, made in runs)
     out, why = low, err
-    for res, failed, _, _ in got:
+    for res, failed, _, _ in runs:
         if why is not None:
             break
         out = out + res
@@ -171,8 +194,8 @@ def _in_processes(case: Case, speeds, model: str, opts: Options, workers: int,
     j = None if stop is None else crossing([r["mu"] for r in out], stop)
     if j is not None:
         bracket = (float(speeds[j - 1]), float(speeds[j]))
-        refined = next((r for _, _, r, _ in got if r is not None and r[0] == bracket), None)
+        refined = next((r for _, _, r, _ in runs if r is not None and r[0] == bracket), None)
         return out[:j + 1], solved, refined
-    if why is not None:    # before any crossing: the serial scan would have raised it too
+    if why is not None:    # before any crossing: the scan cannot answer past it
         raise why
     return out, solved, None

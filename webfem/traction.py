@@ -131,14 +131,12 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     options, **values
         The model's options (an options object, a dict or keywords).
     workers : int
-        Local processes for the scan (1 to 256; default 1): more than one runs the scan in
-        runs of consecutive speeds, each with continuation and each stopping at a crossing
-        of its own; this process walks the lowest speeds
-        (:data:`webfem.loss_scan.LOW_SHARE` of them for two), each worker the next run from
-        a cold start and refines its crossing at once (used where it is the scan's first).
-        A cold start may solve on another mesh than the continued one, so the
-        values agree within the model's stated errors: on the base case's fe2d search
-        mu_peak 3.2e-8 apart (stated error 1.7e-5), the speed 2e-7 m/s (``xtol`` 0.02 m/s).
+        Local processes for the scan (1 to 256; default 1). An FE scan walks its speeds in
+        two runs, each with continuation and each stopping at a crossing of its own: the
+        lowest :data:`webfem.loss_scan.LOW_SHARE` of them, then the rest from a cold start;
+        with ``workers`` > 1 a worker process walks the second run while this one walks the
+        first, and refines its crossing at once (used where it is the scan's first). The
+        answer is the same to the bit with any ``workers`` (more than 2 are not used).
     full_scan : bool
         Solve every speed of the range, not stopping at the first crossing.
 
@@ -167,6 +165,8 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     from .sweeps.workers import check_workers
 
     check_workers(workers)
+    if not isinstance(full_scan, bool):
+        raise InputError(f"full_scan = {full_scan!r} is not valid: must be True or False")
     opts = make_options(model, options, **values)
     note = ""
     if model == "fitted":       # scan the speeds its domain holds (it refuses the others)

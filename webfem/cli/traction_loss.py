@@ -48,7 +48,8 @@ def add_parser(subparsers) -> None:
                    help="local processes for the speed scan and the chart's searches "
                         f"(default {DEFAULT_WORKERS} where the machine has {DEFAULT_WORKERS} "
                         "cores or more, else 1: they pay only where both are idle; the same "
-                        "answers within the stated errors: a worker starts cold)")
+                        "answers: the scan's to the bit, its second run starting cold either "
+                        "way, the chart's to rounding)")
     p.add_argument("--full-scan", action="store_true",
                    help="solve every speed up to --max-speed (the peak is then the whole "
                         "range's) instead of stopping at the first speed below --mu-min")

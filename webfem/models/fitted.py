@@ -152,6 +152,10 @@ def predict(G: np.ndarray, fit: dict | None = None, *,
     More than :data:`BLOCK` points are evaluated in blocks on ``n_threads`` threads
     (default :func:`threads`); each point's answer is computed alone (row by row), so it
     does not depend on the batch or the thread count (to rounding: tests/test_fitted.py)."""
+    if n_threads is not None and (isinstance(n_threads, bool) or not isinstance(n_threads, int)
+                                  or n_threads < 1):
+        raise ValueError(f"n_threads = {n_threads!r} is out of range: an integer >= 1, or "
+                         "None for one per core")
     fit = fit or coefficients()
     G = np.atleast_2d(np.asarray(G, float))
     stack = _stack_of(fit)
@@ -232,7 +236,7 @@ def region_of(fit: dict, ratio, Dn) -> np.ndarray:
             + np.searchsorted(dn_edges, Dn))
 
 
-_REGION = ("resting (predicted h_min < 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
+_REGION = ("resting (predicted h_min <= 1.5 sigma)", "landing (h_min 1.5-4 sigma)",
            "flying (h_min > 4 sigma)")
 
 
@@ -247,7 +251,7 @@ def region_name(fit: dict, region: int) -> str:
     gap, band = divmod(int(region), len(dn_edges) + 1)
     name = _REGION[gap] if len(fit["edges"]) == 2 else f"gap region {gap}"
     if len(dn_edges) == 2:
-        name += (", flexible web (bending group Dn < {0:g})",
+        name += (", flexible web (bending group Dn <= {0:g})",
                  ", bending group Dn {0:g}-{1:g}",
                  ", stiff web (bending group Dn > {1:g})")[band].format(*dn_edges)
     elif len(dn_edges):

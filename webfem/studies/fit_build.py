@@ -44,11 +44,11 @@ __all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select
 
 #: Regions of the predicted H_min / S: resting (< 1.5), landing, flying (> 4).
 REGION_EDGES = np.array([1.5, 4.0])
-#: Bands of the bending group Dn inside each of those regions (flexible < 1, 1-100, stiff
+#: Bands of the bending group Dn inside each of those regions (flexible <= 1, 1-100, stiff
 #: > 100): the stated error is per (region, band) cell. Measured on the 321 hold-out points
 #: of the 1642-point campaign, the 95th percentiles of a flying web's h_min error are 0.39,
-#: 0.59 and 5.4 in the three bands: one table per gap region stated 1.02 for all three, 5
-#: times the true error of a stiff web and 2.6 times that of a flexible one.
+#: 0.59 and 5.4 in the three bands: one table per gap region stated 1.02 for all three, a
+#: fifth of a stiff web's true error and 2.6 times a flexible one's.
 DN_EDGES = np.array([1.0, 100.0])
 #: The gap columns' remainders are clipped to +-CLIP before fitting: a few points whose web
 #: is pressed far below its contact gap (the floor) or flies far above the baseline would
@@ -223,6 +223,8 @@ def fit_kernel(x: np.ndarray, y: np.ndarray, *, weights=None, restarts: int = 2,
     (:func:`sor_weights`); None keeps every point (the GP mean). ``kind``: the radial
     function (:data:`KIND` by default)."""
     kind = kind or KIND
+    if kind not in KINDS:
+        raise ValueError(f"kind = {kind!r} is not a radial function: one of {sorted(KINDS)}")
     ys, y_mean, y_std = _standardised(y)
     A = np.hstack([np.ones((len(x), 1)), x])
     if trend:
