@@ -107,12 +107,14 @@ def test_the_fine_start_meets_the_thin_film_rule_before_the_fine_solve():
     uc, info = coarse.plain_newton(p.transfer(u, prm, coarse), prm, o.tol, o.max_iter)
     assert info.converged
     fine = coarse.variant(X=bisected_nodes(coarse.X), Z=p.Z)
+    # the rule as the fine start reads it (a cold start's flat cells, fe2d.FLAT_RATIO)
     assert adapted_nodes(fine, coarse.transfer(uc, prm, fine), prm, o.adapt_ratio,
-                         o.min_cell) is not None
+                         o.min_cell, flat=fe2d.FLAT_RATIO) is not None
     fine2, u1, after, (coarse2, uc2) = fe2d._fine_start(
         case, prm, o, coarse, uc, SolveInfo(converged=True), fine, np.zeros(fine.n_dofs))
     assert fine2.X.size > fine.X.size and np.array_equal(fine2.Z, p.Z)
-    assert adapted_nodes(fine2, u1, prm, o.adapt_ratio, o.min_cell) is None
+    assert adapted_nodes(fine2, u1, prm, o.adapt_ratio, o.min_cell,
+                         flat=fe2d.FLAT_RATIO) is None
     assert np.array_equal(coarser_nodes(fine2.X, (-e, e)), coarse2.X)
     assert after.converged and after.iterations > 0
     assert np.linalg.norm(coarse2.residual(uc2, prm)[coarse2.free]) <= o.tol

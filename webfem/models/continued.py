@@ -28,7 +28,7 @@ import numpy as np
 from ..case import Case
 from ..fem.outcome import SolveInfo
 from ..result import State
-from .refine import adapted_nodes
+from .refine import FLAT_GAP, adapted_nodes
 
 __all__ = ["moved_nodes", "secant_factor", "extrapolation_weights", "mesh_key",
            "continued_state", "predicted", "similar", "near", "refused_again", "planned_nodes",
@@ -245,16 +245,19 @@ class _Gap:
         return self._gap(np.clip(X, self.X[0], self.X[-1]))
 
 
-def planned_nodes(X, prm, options, gap, coarser: int = 1) -> np.ndarray:
+def planned_nodes(X, prm, options, gap, coarser: int = 1, flat: float = 1.0,
+                  flat_gap: float = FLAT_GAP) -> np.ndarray:
     """The nodes along x a cold solve would refine its graded start mesh ``X``
     (:func:`webfem.fem.mesh.graded_nodes`) to for the gap ``gap(X)`` (a predicted one):
     bisected by the adaptive rule (:func:`webfem.models.refine.adapted_nodes`), up to
     ``options.adapt`` rounds, as the 1-D start of a cold solve does with its own gap.
     ``coarser``: the rule's cell lengths (``adapt_ratio``, ``min_cell``) times this (2: a
-    mesh whose every cell bisected meets the rule)."""
+    mesh whose every cell bisected meets the rule). ``flat``: the rule's factor where the web
+    lies flat and ``flat_gap`` the gap's change that says so (:func:`webfem.models.refine.
+    adapted_nodes`)."""
     for _ in range(options.adapt):
         finer = adapted_nodes(_Gap(X, gap), None, prm, coarser * options.adapt_ratio,
-                              coarser * options.min_cell)
+                              coarser * options.min_cell, flat=flat, flat_gap=flat_gap)
         if finer is None:
             break
         X = finer

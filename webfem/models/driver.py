@@ -33,7 +33,7 @@ from .admissible import admissibility, no_admissible_solution, through_thickness
 from .mesh_error import MAX_DOFS, MeshError, estimate_mesh_error, release
 from .outcome import Facts, build_result
 from .readout import errors_between, read_out
-from .refine import adapted_nodes, minimum
+from .refine import FLAT_GAP, adapted_nodes, minimum
 
 __all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
            "admissibility", "REMEDY_MAX_DOFS", "REST_CHECKED"]
@@ -79,6 +79,9 @@ class Discretisation:
     defaults are those of a model without them (no safe start, nothing to add)."""
 
     name = ""
+    #: the thin-film rule's factor where the web lies flat (:func:`webfem.models.refine.
+    #: adapted_nodes`' ``flat``)
+    flat_ratio = 1.0
 
     def start(self, case: Case, prm: FoilParameters, options,
               restart: State | None) -> Start:
@@ -176,7 +179,10 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
     settle = options.adapt_settle and options.mesh is None and options.nodes is None
     before = None
     while info.converged and rounds < options.adapt:
-        X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell)
+        # a continued start's problem judges flat cells with its own (wider) bound
+        X = adapted_nodes(problem, u, prm, options.adapt_ratio, options.min_cell,
+                          flat=disc.flat_ratio,
+                          flat_gap=getattr(problem, "flat_gap", FLAT_GAP))
         if X is None:
             break
         if settle and rounds == 0:

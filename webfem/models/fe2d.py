@@ -35,7 +35,7 @@ from ..progress import stage
 from .admissible import admissibility
 from .driver import REST_CHECKED, Discretisation, Start, solve_fe
 from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes, kept_nodes
-from .refine import adapted_nodes, interpolated_nodes
+from .refine import FLAT_GAP, adapted_nodes, interpolated_nodes
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -135,6 +135,29 @@ PLANNING_RTOL = 1e-6
 #: in the end against 79,759) without sparing any of the five bisection rounds Q1 takes.
 LINE_MISFIT = 2.0
 
+#: The thin-film rule's cells where the web lies flat on its asperities are this many times
+#: longer (:func:`webfem.models.refine.adapted_nodes`' ``flat``; the driver's rounds, the
+#: coarse mesh's planning, the fine start's check and a continued point's plan): the mesh
+#: error estimate decides there. Why: below 5 m/s the base case's web rests over the whole
+#: wrap on a uniform film (gap 1.09-1.25 sigma) and the film's reaction length bisected all
+#: of it, 22,177 unknowns at 0.5 m/s where 13,089 state 1.1e-5 in h_min (README,
+#: 'lowspeed10'). Only where it is flat: at 4 everywhere the 1 mm board held at the zones'
+#: ends, pressed into its asperities over a short band, answered 10 % away with a 0.55 %
+#: stated error its estimate could not confirm.
+FLAT_RATIO = 4.0
+
+#: A continued point judges a cell flat while its gap changes by less than this many times
+#: :data:`webfem.models.refine.FLAT_GAP` (0.5 sigma; a cold solve: 0.01 sigma): a
+#: hysteresis. A continued mesh's cells all met the rule at the previous point, so only
+#: the cells left long there are concerned. Why: along a sweep the web lifts from the
+#: entry on and the set of flat cells moves with the speed; with the cold bound the long
+#: cells the lifting front had just reached asked the coarser mesh to be bisected at every
+#: point from 1.9 to 10.5 m/s (9-10 Newton steps instead of 7; the 24-point sweep 193 ->
+#: 209 iterations; with this factor at 4: 207, 10: 213, 16: 196, 25: 192, 50 and 100: 185,
+#: the mesh then kept from 1.9 to 10.5 m/s). The mesh error estimate still decides: there
+#: its stated errors are 3-15x Richardson's (``benchmarks/low_speed_meshes.py``'s).
+FLAT_KEPT = 50.0
+
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start, on the 1-D starting
 #: mesh where the mesh is decided up front, the refined one of its safe start, and its
 #: finer-mesh remedy's).
@@ -142,14 +165,15 @@ LINES_KEPT = 3
 
 
 def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what,
-                   planning: bool = False):
+                   planning: bool = False, flat_gap: float = FLAT_GAP):
     """The coarse mesh solved from ``u0`` and bisected where its own 2-D gap asks for cells
     half as fine as the thin-film rule's (:func:`continued.planned_nodes` with
     ``coarser=2``), then solved again, until the rule asks for nothing more
     (:data:`COARSE_ROUNDS` at most). ``what`` names the stage. ``planning``: the first
     mesh is likely to be refined (a cold start's, from the 1-D solution, whose gap is
     thicker than the 2-D film's): it is solved to :data:`PLANNING_RTOL` only, and on to the
-    tolerance where the rule keeps it. Returns ``(coarse, state, info)``, or None where a
+    tolerance where the rule keeps it. ``flat_gap``: the rule's bound on a flat cell's gap
+    change (a continued point's, :data:`FLAT_KEPT`). Returns ``(coarse, state, info)``, or None where a
     solve fails or ends inadmissible, or the rounds run out."""
     info = None
     for rounds in range(COARSE_ROUNDS):
@@ -162,7 +186,8 @@ def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D,
         if not info.converged or admissibility(case, coarse, uc, prm):
             return None
         X = continued.planned_nodes(coarse.X, prm, options,
-                                    lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2)
+                                    lambda x, p=coarse, v=uc: p.gap(v, prm, x), coarser=2,
+                                    flat=FLAT_RATIO, flat_gap=flat_gap)
         if X.size == coarse.X.size:
             if step.residual > options.tol:
                 # the mesh stays: its state is the estimate's, solved to the tolerance
@@ -178,7 +203,8 @@ def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D,
     return None
 
 
-def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, detail):
+def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, detail,
+                flat_gap: float = FLAT_GAP):
     """The fine start of a two-grid start: the coarse state ``uc`` (solved on ``coarse``,
     the coarser mesh of ``fine``, or a refinement of it) carried to ``fine`` (that refinement
     bisected, where it is one) plus ``detail`` (what the coarse mesh does not carry, on
@@ -191,8 +217,8 @@ def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, d
     dips between them, the driver refined the fine answer (1-2 fine steps, a new fine
     factorisation) and the estimate solved its new coarser mesh again (4-5 steps): 13 of
     the 24-point sweep's 195 iterations at 8.7 m/s, 15 and 19 at 10 and 25 m/s of the
-    traction-loss scan. Returns ``(fine, state, info, (coarse, state))``, or None (a fine
-    mesh that is not the coarse one bisected)."""
+    traction-loss scan. ``flat_gap`` as :func:`_coarse_rounds`'. Returns ``(fine, state,
+    info, (coarse, state))``, or None (a fine mesh that is not the coarse one bisected)."""
     e = 0.5 * prm.beta
     found = None
     for rounds in range(COARSE_ROUNDS + 1):
@@ -208,7 +234,8 @@ def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, d
         found = fine, u1, info, (coarse, uc)
         if rounds == COARSE_ROUNDS:
             return found
-        X = adapted_nodes(fine, u1, prm, options.adapt_ratio, options.min_cell) \
+        X = adapted_nodes(fine, u1, prm, options.adapt_ratio, options.min_cell,
+                          flat=FLAT_RATIO, flat_gap=flat_gap) \
             if options.adapt and options.mesh is None and options.nodes is None else None
         if X is None or fine.n_dofs * X.size / fine.X.size > MAX_DOFS:
             return found
@@ -217,7 +244,8 @@ def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, d
         finer = coarse.variant(X=np.sort(np.concatenate(
             [coarse.X, 0.5 * (coarse.X[cells] + coarse.X[cells + 1])])))
         settled = _coarse_rounds(case, prm, options, finer, coarse.transfer(uc, prm, finer),
-                                 "the coarser mesh where the fine start's gap asks")
+                                 "the coarser mesh where the fine start's gap asks",
+                                 flat_gap=flat_gap)
         if settled is None:
             return found
         coarse, uc, step = settled
@@ -307,6 +335,7 @@ class _Film(Discretisation):
     the start and the X mesh, already refined where the film is thin."""
 
     name = NAME
+    flat_ratio = FLAT_RATIO
 
     def __init__(self):
         #: the cold 1-D starts of the solve under way, by case and 1-D options (bounded)
@@ -491,7 +520,7 @@ class _Film(Discretisation):
         if not np.all(np.isfinite(u0)):
             return None
         planned = continued.planned_nodes(graded, prm, options,
-                                          lambda x: on_moved.gap(u0, prm, x))
+                                          lambda x: on_moved.gap(u0, prm, x), flat=FLAT_RATIO)
         Zc = problem_for_width(case, options)
         kept = {"continued": note}
         info = continued.start_info()
@@ -524,6 +553,8 @@ class _Film(Discretisation):
             kept["continued"] += ", corrected by its coarser mesh solved first"
         # a solved state carried over: Newton's coupled steps straight away
         problem.direct = True
+        # the driver's rounds judge flat cells as the start did (:data:`FLAT_KEPT`)
+        problem.flat_gap = FLAT_KEPT * FLAT_GAP
         return Start(problem, u0, info=info, line=restart.line, kept=kept)
 
     def _two_grid(self, case: Case, prm, options: FE2DOptions, fine, u0, restart: State,
@@ -582,7 +613,8 @@ class _Film(Discretisation):
         if not np.all(np.isfinite(uc0)):
             return None
         # the mesh decided before the fine solve, as a cold start's (:meth:`_coarse_first`)
-        settled = _coarse_rounds(case, prm, options, coarse, uc0, "the coarser mesh first")
+        settled = _coarse_rounds(case, prm, options, coarse, uc0, "the coarser mesh first",
+                                 flat_gap=FLAT_KEPT * FLAT_GAP)
         if settled is None:
             return None
         coarse, uc, info = settled
@@ -593,7 +625,8 @@ class _Film(Discretisation):
         # prediction's change carried only through the coarse mesh) is its special case
         # without the predicted change's fine part
         detail = u0 - coarse_first.transfer(uc0, prm, fine)
-        return _fine_start(case, prm, options, coarse, uc, info, fine, detail)
+        return _fine_start(case, prm, options, coarse, uc, info, fine, detail,
+                           flat_gap=FLAT_KEPT * FLAT_GAP)
 
     def safe_start(self, case: Case, prm, options: FE2DOptions) -> Start | None:
         """The starting mesh solved along the continuation that follows the flying film's

@@ -11,7 +11,11 @@ from numpy.polynomial.legendre import leggauss
 from ..fem import forms
 
 __all__ = ["adapted_nodes", "minimum", "wrap_samples", "interpolation_weights",
-           "interpolated_nodes"]
+           "interpolated_nodes", "FLAT_GAP"]
+
+#: A cell lies where the web is flat when its gap changes by less than this times sigma
+#: across it and its two neighbours (:func:`adapted_nodes` with ``flat``).
+FLAT_GAP = 0.01
 
 
 def minimum(problem, u, prm) -> tuple[float, float]:
@@ -42,7 +46,8 @@ def wrap_samples(X: np.ndarray, beta: float, n: int = 8, cuts=()):
     return pts.ravel(), wts.ravel()
 
 
-def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
+def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000, flat=1.0,
+                  flat_gap=FLAT_GAP):
     """Bisect cells longer than ``ratio`` times the local film or contact length, or None.
 
     Where the film is thin the sink and the contact springs make boundary layers far
@@ -50,6 +55,14 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
     contact length sqrt(S / (c exp(-H/S))) of the web on its asperities and, for a beam, the
     length (Dn / k_c)^(1/4) over which a web bends into its asperities (a beam on an elastic
     foundation of stiffness k_c). No refinement past ``max_cells`` cells.
+
+    ``flat``: where the web lies flat on its asperities (the gap changes by less than
+    :data:`FLAT_GAP` sigma across a cell and its neighbours) cells are bisected only past
+    ``flat`` times ``ratio`` those lengths: nothing varies there on them (fe2d's 4, whose
+    error estimate decides the rest; below 5 m/s the base case's web rests on a uniform
+    film over the whole wrap, and the rule bisected all of it). ``flat_gap``: that change's
+    bound in sigma (a continued point's is wider: a hysteresis, see :data:`webfem.models.
+    fe2d.FLAT_KEPT`).
     """
     X = problem.X
     H_true = problem.gap(u, prm, X)
@@ -69,6 +82,11 @@ def adapted_nodes(problem, u, prm, ratio, min_cell, max_cells=4000):
                 k_true = forms.contact_law(np.minimum(H_true[1:], H_true[:-1]),
                                            prm.as_form_args())[1]
                 scale = np.minimum(scale, (prm.Dn / np.maximum(kc, k_true)) ** 0.25)
+    S = prm.S if prm.contact else 0.0
+    if flat != 1.0 and S > 0.0:
+        change = np.abs(np.diff(H_true)) / S
+        near = np.maximum(change, np.maximum(np.r_[change[1:], 0.0], np.r_[0.0, change[:-1]]))
+        ratio = np.where(near < flat_gap, flat * ratio, ratio)
     return _bisected(X, np.diff(X) > ratio * scale, min_cell, max_cells)
 
 
