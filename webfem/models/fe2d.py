@@ -140,10 +140,10 @@ LINE_MISFIT = 2.0
 #: coarse mesh's planning, the fine start's check and a continued point's plan): the mesh
 #: error estimate decides there. Why: below 5 m/s the base case's web rests over the whole
 #: wrap on a uniform film (gap 1.09-1.25 sigma) and the film's reaction length bisected all
-#: of it, 22,177 unknowns at 0.5 m/s where 13,089 state 1.1e-5 in h_min (README,
-#: 'lowspeed10'). Only where it is flat: at 4 everywhere the 1 mm board held at the zones'
-#: ends, pressed into its asperities over a short band, answered 10 % away with a 0.55 %
-#: stated error its estimate could not confirm.
+#: of it, 22,177 unknowns at 0.5 m/s where 13,089 state 1.1e-5 in h_min
+#: (docs/performance_log.md, 'lowspeed10'). Only where it is flat: at 4 everywhere the 1 mm
+#: board held at the zones' ends, pressed into its asperities over a short band, answered
+#: 10 % away with a 0.55 % stated error its estimate could not confirm.
 FLAT_RATIO = 4.0
 
 #: A continued point judges a cell flat while its gap changes by less than this many times
@@ -173,8 +173,8 @@ def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D,
     mesh is likely to be refined (a cold start's, from the 1-D solution, whose gap is
     thicker than the 2-D film's): it is solved to :data:`PLANNING_RTOL` only, and on to the
     tolerance where the rule keeps it. ``flat_gap``: the rule's bound on a flat cell's gap
-    change (a continued point's, :data:`FLAT_KEPT`). Returns ``(coarse, state, info)``, or None where a
-    solve fails or ends inadmissible, or the rounds run out."""
+    change (a continued point's, :data:`FLAT_KEPT`). Returns ``(coarse, state, info)``, or
+    None where a solve fails or ends inadmissible, or the rounds run out."""
     info = None
     for rounds in range(COARSE_ROUNDS):
         with stage(f"{NAME} newton on {what}, {coarse.n_dofs:,} unknowns"):
