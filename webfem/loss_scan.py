@@ -12,6 +12,11 @@ find is done when the scan is.
 
 from __future__ import annotations
 
+import contextlib
+from concurrent.futures.process import BrokenProcessPool
+
+from threadpoolctl import threadpool_limits
+
 from .api import solve_along
 from .case import Case
 from .errors import ConvergenceError
@@ -114,7 +119,7 @@ def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
 
 
 def _run(case: Case, speeds, model: str, opts: Options, stop, xtol: float):
-    """One run of :func:`_in_processes` in a worker: :func:`_walk`, then :func:`refine` at a
+    """The high run of :func:`_in_runs` in a worker: :func:`_walk`, then :func:`refine` at a
     crossing of its own. Returns the slim results, the error, the refinement (None where
     there is no crossing or a solve of the root find failed: the caller's, should it need
     it) and the root find's solves."""
@@ -145,37 +150,31 @@ def _in_runs(case: Case, speeds, model: str, opts: Options, parallel: bool,
     machine's cores. A run ends early only at a crossing of its own, so the scan's first
     crossing comes before any gap; the count of solves includes those made past it. A
     worker that dies is replaced by the same walk here."""
-    n = len(speeds)
-    first = max(1, round(LOW_SHARE * n))
+    first = max(1, round(LOW_SHARE * len(speeds)))
     high = speeds[first:]
-    future = pool = None
+    pool = future = None
     if parallel:
         from .sweeps.workers import Processes
         pool = Processes(1)
         future = pool.pool.submit(_run, case, high, model, opts, stop, xtol)
     try:
-        if parallel:
-            from threadpoolctl import threadpool_limits
-            with threadpool_limits(limits=1):    # one BLAS thread here too, as in the worker
-                low, err = _walk(case, speeds[:first], model, opts, stop=stop)
-        else:
+        # one BLAS thread here too where a worker runs beside this process
+        with threadpool_limits(limits=1) if parallel else contextlib.nullcontext():
             low, err = _walk(case, speeds[:first], model, opts, stop=stop)
-        done = err is None and stop is not None and crossing([r["mu"] for r in low],
-                                                            stop) is not None
-        got = None
+        done = err is not None or (stop is not None and
+                                   crossing([r["mu"] for r in low], stop) is not None)
+        got = None      # the high run: (results, error, refinement, the root find's solves)
         if future is not None:
-            from concurrent.futures.process import BrokenProcessPool
             if done:
-                pool.stop()     # the crossing is in the low run: the worker's is not needed
+                pool.stop()     # the low run ends the scan: the worker's run is not needed
             else:
                 try:
                     got = future.result()
                 except BrokenProcessPool:
-                    got = None   # the worker died (killed, out of memory): walk it here
-        if got is None and not done and err is None:
+                    pass        # the worker died (killed, out of memory): walk it here
+        if got is None and not done:
             # kept whole: the root find continues from the solved states, as the worker's
-            res, failed = _walk(case, high, model, opts, stop=stop)
-            got = (res, failed, None, 0)
+            got = (*_walk(case, high, model, opts, stop=stop), None, 0)
     except BaseException:
         if pool is not None:
             pool.stop()
@@ -183,19 +182,14 @@ def _in_runs(case: Case, speeds, model: str, opts: Options, parallel: bool,
     finally:
         if pool is not None:
             pool.close()
-    runs = [] if got is None else [got]
-    solved = len(low) + sum(len(res) + made for res, _, _, made in runs)
-    out, why = low, err
-    for res, failed, _, _ in runs:
-        if why is not None:
-            break
-        out = out + res
-        why = failed
+    out, why, refined, solved = low, err, None, len(low)
+    if got is not None:
+        res, failed, refined, made = got
+        out, why, solved = low + res, failed, solved + len(res) + made
     j = None if stop is None else crossing([r["mu"] for r in out], stop)
     if j is not None:
         bracket = (float(speeds[j - 1]), float(speeds[j]))
-        refined = next((r for _, _, r, _ in runs if r is not None and r[0] == bracket), None)
-        return out[:j + 1], solved, refined
+        return out[:j + 1], solved, refined if refined and refined[0] == bracket else None
     if why is not None:    # before any crossing: the scan cannot answer past it
         raise why
     return out, solved, None

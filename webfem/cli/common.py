@@ -27,6 +27,7 @@ from pathlib import Path
 
 from ..bundled import bundled_cases, locate_case
 from ..case import Case, load_case, parse_assignment
+from ..cores import usable_cores
 from ..errors import InputError
 from ..models.options import Options
 from ..models.registry import MODELS, model_spec
@@ -183,13 +184,7 @@ def positive_int(text: str) -> int:
 
 def local_workers(asked: int | None, default: int) -> int:
     """``asked`` when given, else ``default`` but at most the cores this process may use."""
-    if asked is not None:
-        return asked
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except AttributeError:       # not on Linux
-        cores = os.cpu_count() or 1
-    return max(1, min(default, cores))
+    return asked if asked is not None else max(1, min(default, usable_cores()))
 
 
 def add_dask_argument(p) -> None:

@@ -36,6 +36,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..case import Case
+from ..cores import usable_cores
 from ..errors import NoAdmissibleSolution
 from ..physics.contact import REGIMES, contact_gap, contact_pressure
 from ..physics.effects import included, traction_summaries
@@ -111,11 +112,7 @@ BLOCK = 2048
 def threads() -> int:
     """How many threads :func:`predict` shares its blocks among: the cores this process
     may run on (at most 8)."""
-    try:
-        n = len(os.sched_getaffinity(0))
-    except AttributeError:        # not on Linux
-        n = os.cpu_count() or 1
-    return max(1, min(n, 8))
+    return min(usable_cores(), 8)
 
 
 _POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
