@@ -2,7 +2,11 @@
 
 Run: ``make bench`` or ``python benchmarks/bench_speed.py [--no-map]`` from the repository
 root (about 4 minutes with the groove map, which alone took 2.7 minutes before issue 23;
-``--no-map`` leaves it out and says so). Figures, on the base case with its default physics:
+``--no-map`` leaves it out and says so). It first prints the machine's speed on a fixed
+piece of work (:func:`common.machine_reference`): the machines these targets are judged on
+differ (the same code's cold base case took 0.090-0.106 s on one and 0.137 s on another),
+and the figures of two runs compare only beside their references. Figures, on the base case
+with its default physics:
 
 1. a cold ``webfem.solve(cases/base.toml, model="fe2d")`` (median of 3; the 1-D model's
    problem cache cleared before each, imports and first-use set-up excluded by a warm-up);
@@ -37,7 +41,7 @@ import time
 import warnings
 
 import numpy as np
-from common import median_time, target
+from common import machine_reference, median_time, target
 
 import webfem
 from webfem import load_case, solve_along
@@ -86,6 +90,9 @@ def _cores() -> str:
 
 def main(groove_map: bool = True):
     warnings.simplefilter("ignore")
+    print(f"0. machine reference (benchmarks/common.py machine_reference: a 10,000-unknown "
+          f"sparse LU and element contractions, one thread, shortest of 9): "
+          f"{machine_reference():.1f} ms; load {os.getloadavg()[0]:.2g}")
     base = load_case("cases/base.toml")
     grooved = load_case("cases/base_grooved.toml")
     _cold(base)                                          # imports, first-use caches

@@ -47,3 +47,35 @@ def richardson(h0: float, h1: float, h2: float) -> float:
         return h2
     p = np.log2(d1 / d2)
     return h2 + (h2 - h1) / (2.0**p - 1.0)
+
+
+def machine_reference(runs: int = 9) -> float:
+    """The shortest time in ms (the least disturbed by other work on a shared machine) of a fixed piece of the work webfem's solves do, on this
+    machine: the sparse LU factorisation (SuperLU, minimum-degree ordering) of a 2-D
+    nine-point Laplacian on a 100 x 100 grid (10,000 unknowns, about the base case's mesh)
+    and a batch of element-style contractions (``numpy.einsum``), in one thread. The same
+    code's timings on two machines scale roughly as their references do; printed beside
+    every speed benchmark, so figures from different machines can be compared."""
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+    from threadpoolctl import threadpool_limits
+
+    n = 100
+    one = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(n, n))
+    eye = sp.identity(n)
+    A = (sp.kron(one, eye) + sp.kron(eye, one) + 0.25 * sp.kron(one, one)
+         + 1e-3 * sp.identity(n * n)).tocsc()
+    rng = np.random.default_rng(0)
+    B, C = rng.standard_normal((2000, 9, 9)), rng.standard_normal((2000, 9, 16))
+
+    def work():
+        spla.splu(A, permc_spec="MMD_AT_PLUS_A")
+        np.einsum("eij,ejq->eiq", B, C)
+    with threadpool_limits(1):
+        work()
+        times = []
+        for _ in range(runs):
+            t0 = time.perf_counter()
+            work()
+            times.append(time.perf_counter() - t0)
+    return 1e3 * min(times)
