@@ -7,6 +7,7 @@ evaluation speed, and its errors against fe2d on fresh points of another design.
     python benchmarks/bench_fitted.py maps [--out docs/fit_errors.png]
     python benchmarks/bench_fitted.py methods [--store out/fit/campaign.csv]
     python benchmarks/bench_fitted.py kernels [--store benchmarks/fit_campaign/campaign.csv]
+    python benchmarks/bench_fitted.py idlers [--points 6] [--seed 5]
 
 ``methods`` compares fitting methods inside the training set (three quarters fit, the
 fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
@@ -15,6 +16,10 @@ fourth checks; the hold-out rows are not touched), as docs/fit.md reports.
 evaluates (the shipped Matern-5/2, a Gaussian, a rational-quadratic), as ``webfem fit
 build --fit-only`` does, and gives each one's hold-out errors, a paired bootstrap of its
 change against the first's, and predict's speed, alternated.
+
+``idlers`` checks the stated mu error where nothing slides (mu = mu_cc x contact share,
+``fitted.onset_error``) against fe2d on the bundled idler cases at random speeds and
+tensions (``--points`` per case, about 1 minute for 6).
 
 ``coverage`` counts the envelope's smooth points that are physically possible (T_eff > 0 and
 a thin film; ``envelope_sample.IMPOSSIBLE``) and the share of them inside the domain.
@@ -293,10 +298,44 @@ def kernels(store: str) -> None:
               f"{min(many):.3g}-{max(many):.3g} on {fitted.threads()}")
 
 
+def idlers(points: int, seed: int) -> None:
+    import warnings
+
+    import webfem
+    from webfem.errors import ConvergenceError, InputError
+    from webfem.models.readout import error_scale
+
+    warnings.simplefilter("ignore")
+    rng = np.random.default_rng(seed)
+    n = over = over2 = 0
+    for name in ("idler", "pet_idler", "board", "press_idler"):
+        base = webfem.load_case(f"cases/{name}.toml")
+        for _ in range(points):
+            u = float(rng.uniform(3.0, 25.0))
+            case = base.updated({"roller.speed": u, "web.speed": u,
+                                 "web.tension": float(base.web.tension
+                                                      * rng.uniform(0.6, 1.6))})
+            try:
+                fit, fe = webfem.solve(case, "fitted"), webfem.solve(case, "fe2d")
+            except (InputError, ConvergenceError) as e:
+                print(f"{name:12s} U = {u:5.1f} m/s: not compared ({str(e)[:70]})")
+                continue
+            true = abs(fit["mu"] - fe["mu"]) / error_scale(case, "mu", fe["mu"])
+            share = abs(fit["contact_share"] - fe["contact_share"])
+            n, over = n + 1, over + (true > fit["error_mu"])
+            over2 += true > 2.0 * fit["error_mu"]
+            print(f"{name:12s} U = {u:5.1f} m/s: mu fitted {fit['mu']:.4f}, fe2d "
+                  f"{fe['mu']:.4f}; error true {true:.2f}, stated {fit['error_mu']:.2f}; "
+                  f"contact share error {share:.2f}, stated "
+                  f"{fit['error_contact_share']:.2f}")
+    print(f"{n} idler points: the true mu error exceeds the stated one at {over}, twice it "
+          f"at {over2}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("what", choices=("coverage", "speed", "fresh", "maps", "methods",
-                                     "kernels"))
+                                     "kernels", "idlers"))
     ap.add_argument("--store", default="out/fit/campaign.csv")
     ap.add_argument("--out", default="docs/fit_errors.png")
     ap.add_argument("--points", type=int, default=None)
@@ -314,6 +353,8 @@ def main() -> None:
     elif a.what == "kernels":
         kernels(a.store if a.store != "out/fit/campaign.csv"
                 else "benchmarks/fit_campaign/campaign.csv")
+    elif a.what == "idlers":
+        idlers(a.points or 6, a.seed if a.seed != 2024 else 5)
     else:
         fresh(a.points or 40, a.seed)
 

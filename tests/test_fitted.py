@@ -565,3 +565,26 @@ def test_other_kernels_stack_and_fit_as_the_generic_formula(kind):
 def test_predict_refuses_a_bad_thread_count_naming_it(bad):
     with pytest.raises(ValueError, match="n_threads"):
         fitted.predict(fc.design(3, seed=1), n_threads=bad)
+
+
+@pytest.mark.parametrize("name, speed", [("idler", 12.4), ("press_idler", 20.7)])
+def test_where_nothing_slides_the_stated_mu_error_bounds_the_true_one(name, speed):
+    """mu = mu_cc x contact share on an idler: the cell's mu error (measured on the
+    campaign's sliding webs) stated 0.2 here against a true 2.4; the share's error carried
+    through bounds it, and the answer says so."""
+    case = webfem.load_case(f"cases/{name}.toml").updated(
+        {"roller.speed": speed, "web.speed": speed})
+    fit, fe = webfem.solve(case, "fitted"), webfem.solve(case, "fe2d")
+    true = abs(fit["mu"] - fe["mu"]) / error_scale(case, "mu", fe["mu"])
+    assert true > 1.0                       # the fit is far off here: the test can fail
+    assert fit["error_mu"] >= true
+    assert fit["error_mu"] == pytest.approx(fitted.onset_error(
+        fit["mu"], case.friction.mu_cc, fit["error_contact_share"]))
+    assert "contact share's stated error carried through" in fit.summary.error_basis
+
+
+def test_a_sliding_web_keeps_its_cells_mu_error():
+    fit = webfem.solve("base", "fitted")
+    assert fit.summary.U_slide > 0.0
+    assert "carried through" not in fit.summary.error_basis
+    assert fit["error_mu"] < 1.0
