@@ -118,8 +118,9 @@ def test_idler_table_header_csv_and_model_per_row(tmp_path, capsys):
     assert main(["idler", "idler", "--model", "closed-form", "--num", "3",
                  "--out", str(tmp_path)]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[1].split() == ["line", "speed", "required", "available", "margin", "verdict"]
-    assert lines[2].split() == ["[m/s]", "[N/m]", "[N/m]", "[-]"]
+    assert lines[1].split() == ["line", "speed", "required", "available", "margin", "range",
+                                "verdict"]
+    assert lines[2].split() == ["[m/s]", "[N/m]", "[N/m]", "[-]", "[-]"]
     rows = list(csv.DictReader((tmp_path / "idler_idler.csv").open()))
     assert list(rows[0]) == list(MarginCurve.COLUMNS) and len(rows) == 3
     assert {r["model_used"] for r in rows} == {"closed-form"}
@@ -128,6 +129,25 @@ def test_idler_table_header_csv_and_model_per_row(tmp_path, capsys):
                         (0.3,) * 3, (True,) * 3, ("fe1d", "fe2d", "fe2d"))
     assert curve.answered() == "auto: fe1d at 1, fe2d at 2 speeds"
     assert [r["model_used"] for r in curve.rows()] == ["fe1d", "fe2d", "fe2d"]
+    assert curve.verdicts() == ["holds", "holds", "SLIPS"]     # no stated range: the margin
     from webfem.cli.idler import _table
     text = _table(curve, "si").splitlines()
     assert text[1].split()[-1] == "model" and text[3].split()[-1] == "fe1d"
+
+
+def test_idler_verdict_is_unsure_where_mu_s_stated_error_straddles_one(capsys):
+    """The fitted model's mu on an idler states its error from the contact share's
+    (fitted.onset_error): where that range of the margin crosses 1 the verdict says so."""
+    from webfem.idler import margin_curve
+    curve = margin_curve(webfem.load_case("cases/idler.toml"), [4.8, 12.4], "fitted")
+    assert all(lo <= m <= hi for lo, m, hi in zip(curve.margin_low, curve.slip_margin,
+                                                  curve.margin_high))
+    assert curve.verdicts()[1] == "unsure" and curve.error_mu[1] > 1.0
+    fe = margin_curve(webfem.load_case("cases/idler.toml"), [12.4], "fe1d")
+    assert fe.verdicts() == ["SLIPS"]      # a finer model decides: fe2d's margin is 0.13
+    assert main(["idler", "idler", "--model", "fitted", "--num", "3"]) == 0
+    assert "unsure: the answer's stated error of mu" in capsys.readouterr().out
+    assert main(["solve", "idler", "--set", "roller.speed=12.4", "--set", "web.speed=12.4",
+                 "--model", "fitted"]) == 0
+    assert "idler unsure: margin 1.6, but mu's stated error allows 0 to" in \
+        capsys.readouterr().out

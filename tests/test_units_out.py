@@ -161,8 +161,9 @@ def test_idler_table_and_chart_in_us_units(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "line speed [ft/min]" in out and "[pli]" in out and "m/s" not in out
     lines = out.splitlines()
-    assert lines[1].split() == ["line", "speed", "required", "available", "margin", "verdict"]
-    assert lines[2].split() == ["[ft/min]", "[pli]", "[pli]", "[-]"]
+    assert lines[1].split() == ["line", "speed", "required", "available", "margin", "range",
+                                "verdict"]
+    assert lines[2].split() == ["[ft/min]", "[pli]", "[pli]", "[-]", "[-]"]
     first = lines[3].split()
     assert float(first[0]) == pytest.approx(600, rel=1e-3)
     assert (tmp_path / "idler_idler.png").exists()

@@ -19,8 +19,18 @@ def error_text(s) -> str | None:
                                "the contact share absolute)")
 
 
-def verdict(s) -> str:
-    """The idler's one-line answer from a summary with an idler check."""
+def verdict(s, case=None) -> str:
+    """The idler's one-line answer from a summary with an idler check; with the ``case``,
+    ``unsure`` where mu's stated error puts the margin on both sides of 1
+    (:func:`webfem.physics.effects.margin_range`)."""
+    if case is not None and s.error_mu is not None:
+        from .physics.effects import margin_range
+        low, high = margin_range(case, s.delta_T_required, s.mu_onset, s.error_mu)
+        if low < 1.0 <= high:
+            return (f"  idler unsure: margin {s.slip_margin:.2g}, but mu's stated error allows "
+                    f"{low:.2g} to {high:.2g} (needs {s.delta_T_required:.3g} N/m, can carry "
+                    f"{s.delta_T_available:.3g} N/m at mu_onset {s.mu_onset:.3g}); a finer "
+                    "model decides")
     if s.slip_margin >= 1.0:
         return (f"  idler holds with margin {s.slip_margin:.2g} (needs {s.delta_T_required:.3g}"
                 f" N/m, can carry {s.delta_T_available:.3g} N/m at mu_onset "
@@ -79,7 +89,7 @@ def describe(result) -> str:
     lines.append(f"  physics: T_eff = {s.T_eff:.4g} N/m, D = {s.bending_stiffness_used:.3g} N m; "
                  "effects: " + (", ".join(s.effects) or "none (the paper's model)"))
     if s.slip_margin is not None:
-        lines.append(verdict(s))
+        lines.append(verdict(s, c))
     for w in s.warnings:
         lines.append(f"  warning: {w}")
     return "\n".join(lines)

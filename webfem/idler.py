@@ -23,6 +23,7 @@ import numpy as np
 from .api import solve_along
 from .case import Case
 from .errors import InputError
+from .physics.effects import margin_range
 
 __all__ = ["MarginCurve", "margin_curve"]
 
@@ -42,10 +43,16 @@ class MarginCurve:
     mu_onset: tuple[float, ...]
     converged: tuple[bool, ...]
     models_used: tuple[str, ...] = ()
+    #: The stated error of ``mu_onset`` at each speed (the answer's ``error_mu``: relative to
+    #: the larger of |mu| and 0.1 mu_cc) and, from it, the slip margin's range
+    #: (:func:`margin_range`); empty for a curve made without them.
+    error_mu: tuple[float, ...] = ()
+    margin_low: tuple[float, ...] = ()
+    margin_high: tuple[float, ...] = ()
 
     #: The columns of :meth:`rows` (and of ``webfem idler --out``'s CSV), SI units.
     COLUMNS = ("speed", "delta_T_required", "delta_T_available", "slip_margin", "mu_onset",
-               "converged", "model_used")
+               "converged", "model_used", "error_mu", "margin_low", "margin_high")
 
     def to_dict(self) -> dict:
         """The fields, JSON-safe (a speed without an answer has None for its numbers)."""
@@ -56,9 +63,25 @@ class MarginCurve:
         """One row per line speed, keyed by :attr:`COLUMNS` (``speed`` [m/s] is the line
         speed, U_r = U_w)."""
         used = self.models_used or (self.model,) * len(self.speeds)
+        none = (None,) * len(self.speeds)
         return [dict(zip(self.COLUMNS, values)) for values in zip(
             self.speeds, self.delta_T_required, self.delta_T_available, self.slip_margin,
-            self.mu_onset, self.converged, used)]
+            self.mu_onset, self.converged, used, self.error_mu or none,
+            self.margin_low or none, self.margin_high or none)]
+
+    def verdicts(self) -> list[str]:
+        """Per speed: ``holds`` (the margin's whole stated range at or above 1), ``SLIPS``
+        (all of it below 1), ``unsure`` (the stated error of mu leaves either possible) or
+        ``no answer``."""
+        low = self.margin_low or self.slip_margin
+        high = self.margin_high or self.slip_margin
+        out = []
+        for ok, lo, hi in zip(self.converged, low, high):
+            if not ok:
+                out.append("no answer")
+            else:
+                out.append("holds" if lo >= 1.0 else "SLIPS" if hi < 1.0 else "unsure")
+        return out
 
     def answered(self) -> str:
         """Which model answered: ``fe1d``, or for auto ``auto: fe2d at every speed`` /
@@ -108,10 +131,14 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
     else:
         results = list(solve_along(cases, model, options, **values))
     pick = {k: tuple(float(r[k]) if r is not None else math.nan for r in results)
-            for k in keys}
+            for k in keys + ("error_mu",)}
+    ranges = [margin_range(c, r["delta_T_required"], r["mu_onset"], r["error_mu"])
+              if r is not None else (math.nan, math.nan) for c, r in zip(cases, results)]
     used = tuple((r.summary.model_used or r["model"]) if r is not None else model
                  for r in results)
     return MarginCurve(model, tuple(speeds),
                        converged=tuple(r is not None and bool(r["converged"])
                                        for r in results),
-                       models_used=used, **pick)
+                       models_used=used, margin_low=tuple(lo for lo, _ in ranges),
+                       margin_high=tuple(hi for _, hi in ranges), **pick)
+

@@ -68,22 +68,30 @@ def _table(curve, units: str) -> str:
     speed, tension = unit_label("speed", units), unit_label("tension", units)
     mixed = any(m != curve.model for m in curve.models_used)   # auto: its choice per row
     lines = [f"idler slip check ({curve.answered()}): line speed [{speed}], delta_T "
-             f"required and available [{tension}] at the onset of slip, margin",
-             (f"  {'line speed':>10} {'required':>10} {'available':>10} {'margin':>9}  "
-              f"{'verdict':<7}" + ("  model" if mixed else "")).rstrip(),
-             f"  {f'[{speed}]':>10} {f'[{tension}]':>10} {f'[{tension}]':>10} {'[-]':>9}"]
+             f"required and available [{tension}] at the onset of slip, margin, the "
+             f"margin's range from mu's stated error",
+             (f"  {'line speed':>10} {'required':>10} {'available':>10} {'margin':>9} "
+              f"{'range':>19}  {'verdict':<7}" + ("  model" if mixed else "")).rstrip(),
+             f"  {f'[{speed}]':>10} {f'[{tension}]':>10} {f'[{tension}]':>10} {'[-]':>9} "
+             f"{'[-]':>19}"]
     used = curve.models_used or (curve.model,) * len(curve.speeds)
-    for u, r, a, m, name, ok in zip(curve.speeds, curve.delta_T_required,
-                                    curve.delta_T_available, curve.slip_margin, used,
-                                    curve.converged):
+    low = curve.margin_low or curve.slip_margin
+    high = curve.margin_high or curve.slip_margin
+    for u, r, a, m, lo, hi, name, verdict in zip(
+            curve.speeds, curve.delta_T_required, curve.delta_T_available,
+            curve.slip_margin, low, high, used, curve.verdicts()):
         u, r, a = (convert(u, "speed", units), convert(r, "tension", units),
                    convert(a, "tension", units))
         # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
         su, st = (3, 3) if units == "si" else (4, 3 if units == "metric" else 4)
-        lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g}  "
-                      f"{('holds' if m >= 1 else 'SLIPS') if ok else 'no answer':<7}"
-                      + (f"  {name}" if mixed else "")).rstrip())
+        span = f"{lo:.3g} - {hi:.3g}"
+        lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g} {span:>19}  "
+                      f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     lines.append("  the idler holds over the whole range" if slip is None
                  else f"  the idler slips above about {display(slip, 'speed', units, 3)}")
+    if "unsure" in curve.verdicts():
+        lines.append("  unsure: the answer's stated error of mu puts the margin on both sides "
+                     "of 1 (a finer model, e.g. --model fe1d or fe2d, or a lower --opt tol, "
+                     "decides)")
     return "\n".join(lines)

@@ -13,7 +13,7 @@ import numpy as np
 from ..case import Case
 from ..fem import forms
 from ..fem.scaling import FoilParameters
-from ..physics.effects import traction_summary
+from ..physics.effects import MU_SCALE, traction_summary
 from ..physics.friction import friction_for, jump_gaps
 from .refine import minimum, wrap_samples
 
@@ -153,9 +153,6 @@ def _read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
                    compression=max(0.0, -min(float(np.min(h)), Hmin * Hs)))
 
 
-#: mu's error is relative to mu, or to this fraction of mu_cc where mu is smaller (where
-#: nothing slides mu is about 0, and a relative error of a near-zero value means nothing).
-MU_SCALE = 0.1
 
 
 def error_scale(case: Case, name: str, value: float) -> float:

@@ -38,7 +38,7 @@ import numpy as np
 
 from .friction import delta_T_from_mu
 
-__all__ = ["EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
+__all__ = ["MU_SCALE", "margin_range", "EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
            "idler_check", "idler_torque", "traction_summary", "traction_summaries"]
 
 #: Every effect, in the order tables list them.
@@ -196,3 +196,30 @@ def traction_summaries(cases, mu, contact_share) -> list[dict]:
             idler.update(mu_onset=onset, delta_T_available=avail)
             out.append(dict(mu=onset, delta_T=avail, mu_film=m, delta_T_film=dT, **idler))
     return out
+
+
+#: mu's error is relative to mu, or to this fraction of mu_cc where mu is smaller (where
+#: nothing slides mu is about 0, and a relative error of a near-zero value means nothing).
+MU_SCALE = 0.1
+
+
+def margin_range(case, required: float, mu: float, error_mu: float | None):
+    """The slip margin's range ``(low, high)`` that mu's stated error allows: the available
+    tension increase T_eff (exp(mu B) - 1) at mu -/+ the error (``error_mu`` relative to
+    the larger of |mu| and :data:`MU_SCALE` mu_cc; mu at least 0),
+    over the ``required`` one [N/m]. Without a stated error, the margin itself both ways.
+
+    >>> import math
+    >>> from webfem import Case
+    >>> c = Case().updated({"roller.speed": 10.0, "web.speed": 10.0})
+    >>> lo, hi = margin_range(c, 1.0, 0.1, 0.5)
+    >>> [round(v / (c.tension_eff * math.expm1(m * c.B)), 12) for v, m in ((lo, 0.05), (hi, 0.15))]
+    [1.0, 1.0]
+    """
+    T, B = case.tension_eff, case.B
+    margin = T * math.expm1(max(mu, 0.0) * B) / required
+    if error_mu is None or not math.isfinite(error_mu) or not math.isfinite(margin):
+        return margin, margin
+    d = error_mu * max(abs(mu), MU_SCALE * case.friction.mu_cc)
+    return (T * math.expm1(max(mu - d, 0.0) * B) / required,
+            T * math.expm1(max(mu + d, 0.0) * B) / required)
