@@ -384,14 +384,21 @@ def test_the_stacked_kernels_are_each_kernel_side_by_side():
     assert stack.n_outputs == 8
     np.testing.assert_allclose(stack(x), each, rtol=1e-12, atol=1e-12)   # many points
     np.testing.assert_allclose(stack(x[:3]), each[:3], rtol=1e-12, atol=1e-12)
-    # the radial function in float32 (as the fitted model runs it): float32's rounding
-    # (6e-8) times the weights' sum, and each point's answer still independent of the batch
+    # the radial function and the weight products in float32 (as the fitted model runs
+    # them): float32's rounding (6e-8) times the weights' sum, and each point's answer still
+    # independent of the batch and of its place in it (every block the same shape)
     fast = Stack(kernels, radial=np.float32)
     bound = 1e-6 * sum(np.abs(k.weights * k.y_std).sum(axis=0).max() for k in kernels)
     np.testing.assert_allclose(fast(x), each, rtol=0, atol=bound)
     assert np.abs(fast(x) - each).max() > 1e-12            # float32 it is
-    np.testing.assert_allclose(np.vstack([fast(x[i:i + 1]) for i in range(5)]), fast(x)[:5],
-                               rtol=1e-13, atol=1e-13)
+    for i in (0, 1, 33, 699):
+        np.testing.assert_allclose(fast(x[i:i + 1])[0], fast(x)[i], rtol=1e-13, atol=1e-13)
+    np.testing.assert_allclose(fast(x[30:40]), fast(x)[30:40], rtol=1e-13, atol=1e-13)
+    # at a centre (r = 0, where the distances' rounding may fall below 0) the lifted square
+    # gives the kernel's value, not a NaN
+    c = kernels[1].centres
+    np.testing.assert_allclose(fast(c), np.column_stack([k(c) for k in kernels]), rtol=0,
+                               atol=bound)
 
 
 def test_the_compressed_fit_is_the_gp_mean_with_every_centre_and_spreads_them():
