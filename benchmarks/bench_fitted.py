@@ -101,8 +101,8 @@ def speed(coefficients: str | None = None) -> None:
           f"{one_cpu * 1e3:8.3f} ms    (target <= 1 ms)")
     print(f"webfem.solve_many of 10,000 (results):  {many:8.3f} s         "
           f"{many_cpu:8.3f} s     (target <= 1 s)")
-    print(f"fitted.predict (raw profile, 100,000):  {m / raw:8.3g} points/s  {raw_cpu / m * 1e6:8.2f} "
-          f"us/point (target >= 1e6 points/s; "
+    print(f"fitted.predict (raw profile, 100,000):  {m / raw:8.3g} points/s  "
+          f"{raw_cpu / m * 1e6:8.2f} us/point (target >= 1e6 points/s; "
           f"{min(fitted.threads(), -(-m // fitted.BLOCK))} threads)")
     print(f"  on one thread:                        {m / raw1:8.3g} points/s  "
           f"{raw1_cpu / m * 1e6:8.2f} us/point")

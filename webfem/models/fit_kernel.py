@@ -182,10 +182,10 @@ class Stack:
     ``radial``: the type the radial function (the Matern kernel's sqrt, exp and polynomial)
     and the weight products are evaluated in. The distances' product stays in float64: its
     three terms reach 1e3 where the distance is near 0, and float32's rounding of them moved
-    the fitted variables by 7e-4 (docs/fit.md, "Speed"). In float32 every block of points is
-    ``chunk`` rows, the last one padded: BLAS then runs the same kernel on every block, and a
-    point's answer has the same bits alone, in any batch and at any place in it (a float32
-    product's rounding otherwise follows the block's shape: 1e-5 here)."""
+    the fitted variables by 3e-3 (docs/fit.md, "Speed"). In float32 every block's products
+    take ``chunk`` rows, a short last block padded: BLAS then runs the same kernel on every
+    block, and a point's answer has the same bits alone, in any batch and at any place in
+    it (a float32 product's rounding otherwise follows the block's shape: 1e-5 here)."""
 
     def __init__(self, kernels, radial=np.float64):
         kernels = list(kernels)

@@ -87,12 +87,12 @@ def coefficients(path: str | None = None) -> dict:
 
 
 #: The type the kernels' radial function and weight products are evaluated in
-#: (:class:`Stack`; the distances stay in float64): float32 is 1.5-1.7 times as fast as
-#: float64 products after a float32 radial function, and moves the fitted variables by up to
-#: 4.8e-5 against float64 throughout (the answers by up to 1.9e-4 of webfem's error
-#: measures, a thousandth of the smallest stated error), mostly through the gaps' kernel,
-#: whose weights cancel (sum |w phi| is 700 times |y| at the median); the stated errors
-#: are measured through it (docs/fit.md, "Speed").
+#: (:class:`Stack`; the distances stay in float64): the kernels 1.55 times as fast as with
+#: float64 products (and blocks of 128), and the answers move by up to 1.9e-4 of webfem's
+#: error measures against float64 throughout (fitted variables: 4.8e-5), a thousandth of
+#: the smallest stated error, mostly through the gaps' kernel, whose weights cancel (sum
+#: |w phi| is 680 times |y| at the median); the stated errors are measured through it
+#: (docs/fit.md, "Speed").
 RADIAL = np.float32
 
 
