@@ -36,10 +36,10 @@ _SQRT5 = np.sqrt(5.0)
 #: cost several times the work (measured: 4e4 against 2e5 points/s; docs/fit.md, "Speed").
 ONE_THREAD_FROM = 64
 #: Points per block of :class:`Stack`'s evaluation: its work arrays (100-250 kB each) then
-#: stay in the core's cache. In float32 every block is this many rows (one point is padded
-#: to it), so it is also the smallest evaluation's cost (measured on 2048 points, one
-#: thread, the shipped fit: 2.2-2.5 us a point at 32, 2.1-2.3 at 48 and 64, 2.8-2.9 at 16
-#: and 128).
+#: stay in the core's cache. In float32 every block's products take this many rows (a lone
+#: point's padded to it), so it also sets the smallest evaluation's cost (measured on 2048
+#: points, one thread, the shipped fit: 2.2-2.5 us a point at 32, 2.1-2.5 at 48 and 64,
+#: 2.8-2.9 at 16 and 128).
 CHUNK = 32
 
 
