@@ -440,6 +440,26 @@ def test_the_shipped_fit_is_the_compressed_build():
     assert np.allclose(table, fit["errors"], rtol=1e-9, atol=0.0)
 
 
+def test_restate_measures_the_table_again_and_keeps_the_rest(tmp_path):
+    """fit_build.restate: a file whose table is wrong gets the shipped fit's own table back
+    (its hold-out rows through today's evaluation), every other array as it was."""
+    from webfem.studies import fit_build as fb
+    npz = np.load(fitted.COEFFICIENTS)
+    arrays = {k: npz[k] for k in npz.files}
+    path = tmp_path / "wrong.npz"
+    np.savez_compressed(path, **{**arrays, "region_errors": np.zeros_like(
+        arrays["region_errors"])})
+    table = fb.restate(path, tmp_path / "restated.npz")
+    out = np.load(tmp_path / "restated.npz")
+    assert set(out.files) == set(arrays)
+    for k, a in arrays.items():
+        if k != "region_errors":
+            assert np.array_equal(out[k], a), k
+    np.testing.assert_allclose(out["region_errors"], arrays["region_errors"], rtol=1e-12)
+    np.testing.assert_array_equal(table, out["region_errors"])
+    assert not np.load(path)["region_errors"].any()        # the input file untouched
+
+
 def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():
     """The shipped fit answers h_center, h_min and the contact share from their own kernels
     (docs/fit.md), h_min capped by the profile's smallest node; the profile still gives the
