@@ -384,14 +384,21 @@ def test_the_stacked_kernels_are_each_kernel_side_by_side():
     assert stack.n_outputs == 8
     np.testing.assert_allclose(stack(x), each, rtol=1e-12, atol=1e-12)   # many points
     np.testing.assert_allclose(stack(x[:3]), each[:3], rtol=1e-12, atol=1e-12)
-    # the radial function in float32 (as the fitted model runs it): float32's rounding
-    # (6e-8) times the weights' sum, and each point's answer still independent of the batch
+    # the radial function and the weight products in float32 (as the fitted model runs
+    # them): float32's rounding (6e-8) times the weights' sum, and each point's answer still
+    # independent of the batch and of its place in it (every block the same shape)
     fast = Stack(kernels, radial=np.float32)
     bound = 1e-6 * sum(np.abs(k.weights * k.y_std).sum(axis=0).max() for k in kernels)
     np.testing.assert_allclose(fast(x), each, rtol=0, atol=bound)
     assert np.abs(fast(x) - each).max() > 1e-12            # float32 it is
-    np.testing.assert_allclose(np.vstack([fast(x[i:i + 1]) for i in range(5)]), fast(x)[:5],
-                               rtol=1e-13, atol=1e-13)
+    for i in (0, 1, 33, 699):
+        np.testing.assert_allclose(fast(x[i:i + 1])[0], fast(x)[i], rtol=1e-13, atol=1e-13)
+    np.testing.assert_allclose(fast(x[30:40]), fast(x)[30:40], rtol=1e-13, atol=1e-13)
+    # at a centre (r = 0, where the distances' rounding may fall below 0) the lifted square
+    # gives the kernel's value, not a NaN
+    c = kernels[1].centres
+    np.testing.assert_allclose(fast(c), np.column_stack([k(c) for k in kernels]), rtol=0,
+                               atol=bound)
 
 
 def test_the_compressed_fit_is_the_gp_mean_with_every_centre_and_spreads_them():
@@ -431,6 +438,26 @@ def test_the_shipped_fit_is_the_compressed_build():
             for G, V in zip(npz["holdout_groups"], npz["holdout_values"])]
     table = fb.region_errors(fb.holdout_errors(rows, fit))
     assert np.allclose(table, fit["errors"], rtol=1e-9, atol=0.0)
+
+
+def test_restate_measures_the_table_again_and_keeps_the_rest(tmp_path):
+    """fit_build.restate: a file whose table is wrong gets the shipped fit's own table back
+    (its hold-out rows through today's evaluation), every other array as it was."""
+    from webfem.studies import fit_build as fb
+    npz = np.load(fitted.COEFFICIENTS)
+    arrays = {k: npz[k] for k in npz.files}
+    path = tmp_path / "wrong.npz"
+    np.savez_compressed(path, **{**arrays, "region_errors": np.zeros_like(
+        arrays["region_errors"])})
+    table = fb.restate(path, tmp_path / "restated.npz")
+    out = np.load(tmp_path / "restated.npz")
+    assert set(out.files) == set(arrays)
+    for k, a in arrays.items():
+        if k != "region_errors":
+            assert np.array_equal(out[k], a), k
+    np.testing.assert_allclose(out["region_errors"], arrays["region_errors"], rtol=1e-12)
+    np.testing.assert_array_equal(table, out["region_errors"])
+    assert not np.load(path)["region_errors"].any()        # the input file untouched
 
 
 def test_the_gaps_and_share_fitted_on_their_own_are_the_answers():

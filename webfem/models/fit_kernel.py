@@ -35,10 +35,12 @@ _SQRT5 = np.sqrt(5.0)
 #: few hundred points are too small to share, and on a loaded machine the threads' waiting
 #: cost several times the work (measured: 4e4 against 2e5 points/s; docs/fit.md, "Speed").
 ONE_THREAD_FROM = 64
-#: Points per block of :class:`Stack`'s evaluation: its work arrays (a few hundred kB each)
-#: then stay near the core (measured on 2048 points, one thread: 2.5-3.1 us a point at 128,
-#: 3.2-3.6 at 256, 3.9-4.9 at 512, 2.9 at 32).
-CHUNK = 128
+#: Points per block of :class:`Stack`'s evaluation: its work arrays (100-250 kB each) then
+#: stay in the core's cache. In float32 every block's products take this many rows (a lone
+#: point's padded to it), so it also sets the smallest evaluation's cost (measured on 2048
+#: points, one thread, the shipped fit: 2.2-2.5 us a point at 32, 2.1-2.5 at 48 and 64,
+#: 2.8-2.9 at 16 and 128).
+CHUNK = 32
 
 
 @lru_cache(maxsize=1)
@@ -177,10 +179,13 @@ class Stack:
     own columns; the outputs side by side, in the kernels' order. The same values as calling
     each kernel to rounding, with the per-call costs paid once.
 
-    ``radial``: the type the radial function (the Matern kernel's sqrt, exp and polynomial,
-    the bulk of its work; the Gaussian's exp) is evaluated in; the distances and the weight
-    product stay in float64, so each point's answer does not depend on the others in the
-    batch."""
+    ``radial``: the type the radial function (the Matern kernel's sqrt, exp and polynomial)
+    and the weight products are evaluated in. The distances' product stays in float64: its
+    three terms reach 1e3 where the distance is near 0, and float32's rounding of them moved
+    the fitted variables by 3e-3 (docs/fit.md, "Speed"). In float32 every block's products
+    take ``chunk`` rows, a short last block padded: BLAS then runs the same kernel on every
+    block, and a point's answer has the same bits alone, in any batch and at any place in
+    it (a float32 product's rounding otherwise follows the block's shape: 1e-5 here)."""
 
     def __init__(self, kernels, radial=np.float64):
         kernels = list(kernels)
@@ -194,7 +199,7 @@ class Stack:
         self.radial = np.dtype(radial)
         # the Matern polynomial's 1/3 goes into the weights
         scale = 3.0 if self.kind == "matern52" else 1.0
-        cols, self._blocks = [], []
+        cols, self._blocks, self._trends = [], [], []
         start = out = 0
         for k in kernels:
             inv2 = 1.0 / k.scales ** 2
@@ -204,13 +209,30 @@ class Stack:
             _, _, w, t0, t1 = k._prepared
             self._blocks.append((slice(start, start + len(k.centres)),
                                  slice(out, out + w.shape[1]),
-                                 np.ascontiguousarray(w / scale), t0,
-                                 t1 if t1.any() else None))
+                                 np.ascontiguousarray(w / scale, self.radial), t0))
+            if t1.any():
+                self._trends.append((self._blocks[-1][1], t1))
             start += len(k.centres)
             out += w.shape[1]
         # the product is the radial function's argument as it takes it
-        self._A = np.ascontiguousarray(STACKED[self.kind] * np.hstack(cols))
+        A = STACKED[self.kind] * np.hstack(cols)
+        if self.kind == "matern52" and self.radial != np.float64:
+            # the product's rounding may take a coincident point's square below 0, where
+            # the square root has no value: lift every square by a bound of that rounding
+            # (1e-10 here; a point outside the unit box is far from every centre), so the
+            # copy to the radial type needs no clamp (which cost as much again); phi moves
+            # by lift / 6 at most, far below float32's rounding
+            A[-1] += self._lift(A)
+        self._A = np.ascontiguousarray(A)
         self.n_outputs = out
+        # every output's mean, added once per block
+        self._means = np.concatenate([b[3] for b in self._blocks])
+
+    @staticmethod
+    def _lift(A: np.ndarray) -> float:
+        """A bound of the float64 rounding of the squared distances' product x A (x^2, x, 1
+        side by side, x in the unit box): 4 (m + 1) eps times its terms' sum."""
+        return 4.0 * len(A) * np.finfo(float).eps * float(np.abs(A).sum(axis=0).max())
 
     def __call__(self, x: np.ndarray, chunk: int = CHUNK) -> np.ndarray:
         x = np.atleast_2d(np.asarray(x, float))
@@ -225,19 +247,28 @@ class Stack:
         evaluating blocks of points side by side set it once around them all)."""
         n = len(x)
         out = np.empty((n, self.n_outputs))
-        xx = np.hstack([x * x, x, np.ones((n, 1))])
         f32 = self.radial != np.float64
+        # float32: the products on whole blocks of ``chunk`` rows (the class text), the
+        # padding's rows 0
+        c = chunk if f32 else min(chunk, n)
+        xx = np.zeros((-(-n // c) * c if f32 else n, 2 * x.shape[1] + 1))
+        np.multiply(x, x, out=xx[:n, :x.shape[1]])
+        xx[:n, x.shape[1]:-1] = x
+        xx[:, -1] = 1.0
         # one set of work arrays per call, reused by every block (a call is one thread's:
         # fitted.predict runs blocks of points on several)
-        c = min(chunk, n)
         d2 = np.empty((c, self._A.shape[1]))
         r = np.empty(d2.shape, self.radial) if f32 else d2
-        e, poly = np.empty_like(r), np.empty_like(r)
-        phi = np.empty(d2.shape) if f32 else poly
+        # phi's rows past a short last block keep an earlier block's values (or 0): finite
+        e, phi = np.empty_like(r), np.zeros_like(r)
+        o32 = np.empty((c, self.n_outputs), self.radial) if f32 else None
         for i in range(0, n, c):
             k = min(c, n - i)
-            dk, rk, ek, pk, phik = d2[:k], r[:k], e[:k], poly[:k], phi[:k]
-            np.matmul(xx[i:i + k], self._A, out=dk)
+            # the products take whole blocks in float32; the elementwise passes (the same
+            # bits whatever the array's length) only the block's points: a lone point pays
+            # the padding's products, not its radial functions
+            np.matmul(xx[i:i + (c if f32 else k)], self._A, out=d2[:c if f32 else k])
+            dk, rk, ek, phik = d2[:k], r[:k], e[:k], phi[:k]
             if self.kind == "gaussian":
                 # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
                 np.exp(dk, out=phik, dtype=self.radial, casting="unsafe")
@@ -245,27 +276,34 @@ class Stack:
                 dk += 1.0                    # 1 + r^2/2
                 np.reciprocal(dk, out=phik)
             else:
-                self._matern52(dk, rk, ek, pk, phik)
-            xi = x[i:i + k]
-            for cols, outs, w, t0, t1 in self._blocks:
-                o = out[i:i + k, outs]
-                np.matmul(phik[:, cols], w, out=o)
-                o += t0
-                if t1 is not None:           # a fit without a trend (the shipped one) skips it
-                    o += xi @ t1
+                self._matern52(dk, rk, ek, phik)
+            if f32:
+                # the whole block, whatever k: the product's shape is the block's
+                for cols, outs, w, _ in self._blocks:
+                    np.matmul(phi[:, cols], w, out=o32[:, outs])
+                np.add(o32[:k], self._means, out=out[i:i + k])
+            else:
+                for cols, outs, w, t0 in self._blocks:
+                    o = out[i:i + k, outs]
+                    np.matmul(phik[:, cols], w, out=o)
+                    o += t0
+            for outs, t1 in self._trends:    # a fit without a trend (the shipped one) skips it
+                out[i:i + k, outs] += x[i:i + k] @ t1
         return out
 
     @staticmethod
-    def _matern52(d2, r, e, poly, phi):
-        """phi = 3 (1 + r + r^2/3) e^-r of d2 = r^2, through r, e and poly (the radial type)."""
-        # rounding may leave a coincident point's square a little below 0; |.| is the
-        # cheapest clamp (the square root of a rounding error either way), and it makes the
-        # radial type's copy in the same pass
-        np.abs(d2, out=r, casting="same_kind")
+    def _matern52(d2, r, e, phi):
+        """phi = 3 (1 + r + r^2/3) e^-r of d2 = r^2, through r and e (the radial type; d2
+        is r itself in float64, clamped here, else lifted above 0 by :meth:`_lift`)."""
+        if r is d2:
+            # rounding may leave a coincident point's square a little below 0
+            np.abs(d2, out=d2)
+        else:
+            np.copyto(r, d2, casting="same_kind")
         np.sqrt(r, out=r)
         np.negative(r, out=e)
         np.exp(e, out=e)
-        np.add(r, 3.0, out=poly)             # the 1/3 is in the weights
-        poly *= r
-        poly += 3.0
-        np.multiply(poly, e, out=phi, casting="unsafe")     # back to float64
+        np.add(r, 3.0, out=phi)              # the 1/3 is in the weights
+        phi *= r
+        phi += 3.0
+        phi *= e

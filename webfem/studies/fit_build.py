@@ -40,7 +40,7 @@ from ..models.readout import error_scale
 
 __all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select_centres",
            "sor_weights", "holdout_errors", "REGION_EDGES", "DN_EDGES", "QUANTILE", "SCALARS",
-           "CENTRES", "KIND"]
+           "CENTRES", "KIND", "restate"]
 
 #: Regions of the predicted H_min / S: resting (< 1.5), landing, flying (> 4).
 REGION_EDGES = np.array([1.5, 4.0])
@@ -306,6 +306,26 @@ def region_errors(errs: dict,
     for j in range(len(QUANTITIES)):
         col = table[:, j]
         col[~np.isfinite(col)] = max(overall[j], np.max(col[np.isfinite(col)], initial=0.0))
+    return table
+
+
+def restate(npz, out_npz=None) -> np.ndarray:
+    """The stated-error table of the coefficients file ``npz`` measured again from its own
+    hold-out rows through today's evaluation (:func:`webfem.models.fitted.predict`), every
+    other array kept, written to ``out_npz`` (default: ``npz`` itself); returns the table.
+
+    For a change of the evaluation's rounding (the float32 products, docs/fit.md, "Speed"):
+    :func:`build` would refit the kernels too, and its leave-one-out search is the same bit
+    for bit only on the same machine (another CPU's BLAS ends it elsewhere)."""
+    from ..models.fitted import QUANTITIES, coefficients
+    with np.load(npz, allow_pickle=False) as data:
+        arrays = {k: data[k] for k in data.files}
+    fit = coefficients.__wrapped__(str(npz))         # the file as it is now, not a cached one
+    rows = [{**{f"g_{g}": v for g, v in zip(fg.GROUPS, G)}, **dict(zip(QUANTITIES, V))}
+            for G, V in zip(arrays["holdout_groups"], arrays["holdout_values"])]
+    table = region_errors(holdout_errors(rows, fit), n_regions=len(arrays["region_errors"]))
+    arrays["region_errors"] = table
+    np.savez_compressed(npz if out_npz is None else out_npz, **arrays)
     return table
 
 
