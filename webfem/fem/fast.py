@@ -217,11 +217,19 @@ def pattern_of(dof_pairs, shape) -> Pattern:
     ``dof_pairs`` ((row DOFs (function, element), column DOFs (function, element)) per
     block), kept in :data:`PATTERNS`."""
     h = hashlib.blake2b(repr(tuple(int(s) for s in shape)).encode(), digest_size=32)
+    # each array hashed once, then named by its place among the distinct ones: a system's
+    # blocks share their fields' DOF maps (the film's appeared in three of its four
+    # blocks), and hashing them was a sixth of building a 2-D system on a kept pattern
+    seen: dict = {}
     for r, c in dof_pairs:
         for a in (r, c):
-            a = np.ascontiguousarray(a, dtype=np.int64)
-            h.update(repr(a.shape).encode())
-            h.update(a.tobytes())
+            if id(a) not in seen:
+                seen[id(a)] = (len(seen), a)     # ``a`` held: its id stays its own
+                b = np.ascontiguousarray(a, dtype=np.int64)
+                h.update(b"new" + repr(b.shape).encode())
+                h.update(b.tobytes())
+            else:
+                h.update(b"seen" + repr(seen[id(a)][0]).encode())
     key = h.digest()
     pattern = PATTERNS.pop(key, None)
     if pattern is None:
