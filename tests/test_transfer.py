@@ -16,9 +16,8 @@ from webfem.fem.hermite import LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
 from webfem.fem import transfer
 from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_basis, film_mesh,
-                                 interpolate_values,
-                                 quadrature_matrices, tensor_interpolation,
-                                 web_values, width_nodes)
+                                 interpolate_values, point_lines, quadrature_matrices,
+                                 tensor_grid, tensor_interpolation, web_values, width_nodes)
 
 
 def _hermite(X, x):
@@ -217,3 +216,7 @@ def test_tensor_interpolation_is_exact_on_a_nested_mesh(order):
     bent = u + 1e-3 * np.sin(7 * coarse.doflocs[0])
     assert np.max(np.abs(tensor_interpolation(X, Z, order, coarse.doflocs, bent, pts)
                          - want)) > 1e-5
+    # the mesh-only parts given (as FoilBearing2D.transfer keeps them): the same bits
+    kept = tensor_interpolation(X, Z, order, coarse.doflocs, u, pts,
+                                grid=tensor_grid(coarse.doflocs), lines=point_lines(pts))
+    assert np.array_equal(kept, got)
