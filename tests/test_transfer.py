@@ -12,7 +12,7 @@ import scipy.sparse as sp
 from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
                    ElementQuad2)
 
-from webfem.fem.hermite import LineProbes
+from webfem.fem.hermite import HermiteLine, LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
 from webfem.fem import transfer
 from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_basis, film_mesh,
@@ -101,6 +101,11 @@ def test_web_values_are_the_hermite_basis_at_the_film_points(order):
     assert values.shape == (4,) + fbasis.dx.shape
     assert np.all(line.p[0, line.t[0, cell]] <= np.asarray(fbasis.global_coordinates()[0])
                   .min(axis=1) + 1e-12)
+    # webfem's Hermite element (values read without a basis on the reference points): the
+    # same bits as scikit-fem's element through a basis
+    ours = web_values(fbasis, Basis(line, HermiteLine(), intorder=6))
+    for a, b in zip(ours, (cell, dofs, values)):
+        assert np.array_equal(a, b)
 
 
 @pytest.mark.parametrize("order", [1, 2])

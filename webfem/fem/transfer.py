@@ -26,6 +26,7 @@ import dataclasses
 
 import numpy as np
 import scipy.sparse as sp
+from .hermite import HermiteLine
 
 __all__ = ["width_nodes", "film_mesh", "film_basis", "quadrature_matrices", "basis_matrices",
            "web_values", "cellwise_matrices", "interpolate_values", "tensor_interpolation",
@@ -223,8 +224,15 @@ def web_values(film_basis, web_basis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     ref, where = np.unique(s, return_inverse=True)
     # the web basis's own element: scikit-fem 12's Hermite element caches data of its mesh
     # (the inverse Vandermonde matrices), which is this mesh
-    at = Basis(line, web_basis.elem, quadrature=(ref[None, :], np.ones(ref.size)))
-    vals = np.array([np.asarray(at.basis[i][0]) for i in range(at.Nbfun)])  # (4, cells, ref)
+    elem = web_basis.elem
+    if isinstance(elem, HermiteLine):
+        # the values alone, as a basis on that quadrature holds them (bitwise: the same
+        # element's sums on the same mapping), without building the basis
+        vals = elem.values(web_basis.mapping, ref[None, :], np.arange(line.t.shape[1]))
+    else:
+        at = Basis(line, elem, quadrature=(ref[None, :], np.ones(ref.size)))
+        vals = np.array([np.asarray(at.basis[i][0]) for i in range(at.Nbfun)])
+    # vals: (4, cells, ref)
     where = where.reshape(s.shape)
     values = vals[:, cell[:, None], where]
     return cell, np.asarray(web_basis.element_dofs)[:, cell], values
