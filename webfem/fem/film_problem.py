@@ -33,7 +33,7 @@ from .newton import PatternSolver, newton
 from .outcome import SolveInfo
 from .picard import frozen_coefficient_picard
 from .systems import FilmSystem, width_load
-from .transfer import (film_basis, film_mesh, interpolate_values, point_lines,
+from .transfer import (film_basis, film_mesh, interpolate_values, point_lines, quadrature,
                        quadrature_matrices, tensor_grid, tensor_interpolation)
 
 __all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS", "strip_weights"]
@@ -118,7 +118,8 @@ class FoilBearing2D:
         # a new Hermite element per mesh: it caches mesh data (scikit-fem 12); HermiteLine
         # evaluates its four functions at once, bitwise as scikit-fem's (the web's values at
         # each new point set: 9 % of a 24-point speed sweep's time with scikit-fem's)
-        self.wbasis = Basis(self.line, HermiteLine(), intorder=6)
+        web = HermiteLine()
+        self.wbasis = Basis(self.line, web, quadrature=quadrature(web.refdom, 6))
         self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
         # scikit-fem's basis, with the DOF numbering of a mesh of the same topology (a
         # moved mesh: a continued point's) shared

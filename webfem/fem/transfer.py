@@ -30,7 +30,7 @@ from .hermite import HermiteLine
 
 __all__ = ["width_nodes", "film_mesh", "film_basis", "quadrature_matrices", "basis_matrices",
            "web_values", "cellwise_matrices", "interpolate_values", "tensor_interpolation",
-           "tensor_grid", "point_lines",
+           "tensor_grid", "point_lines", "quadrature",
            "TOPOLOGIES_KEPT"]
 
 #: Film mesh topologies kept (:func:`film_mesh`): a continued sweep point builds its
@@ -115,6 +115,26 @@ def _attach(mesh, topo) -> None:
     mesh._facets, mesh._t2f, mesh._f2t = topo["facets"], topo["t2f"], topo["f2t"]
 
 
+#: scikit-fem's quadrature rules by (reference domain, order), read-only (:func:`quadrature`)
+_QUADRATURES: dict = {}
+
+
+def quadrature(refdom, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """``skfem.quadrature.get_quadrature(refdom, intorder)``, computed once per rule (a
+    basis asks for it on every mesh: Gauss-Legendre nodes from an eigenvalue problem); the
+    arrays are read-only, being shared by every basis built with them."""
+    key = (refdom, int(intorder))
+    if key not in _QUADRATURES:
+        from skfem.quadrature import get_quadrature
+
+        X, W = get_quadrature(refdom, int(intorder))
+        X, W = np.array(X), np.array(W)
+        X.setflags(write=False)
+        W.setflags(write=False)
+        _QUADRATURES[key] = (X, W)
+    return _QUADRATURES[key]
+
+
 def film_basis(mesh, elem, intorder: int):
     """``skfem.Basis(mesh, elem, intorder=intorder)`` on a mesh from :func:`film_mesh`, to the
     last bit, built with less work: scikit-fem's DOF numbering (``skfem.Dofs``) shared by the
@@ -147,7 +167,8 @@ def film_basis(mesh, elem, intorder: int):
         return last[1]
     mapping.invDF = once
     try:
-        return Basis(mesh, elem, mapping=mapping, intorder=intorder, dofs=dofs)
+        return Basis(mesh, elem, mapping=mapping, quadrature=quadrature(elem.refdom, intorder),
+                     dofs=dofs)
     finally:
         del mapping.invDF
 
