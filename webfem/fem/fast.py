@@ -185,8 +185,14 @@ class Pattern:
 
     def matrix(self, values) -> sp.csr_matrix:
         """The CSR matrix with the blocks' values (same order and shapes as the blocks)."""
-        data = np.bincount(self.slot, weights=np.concatenate([np.ravel(v) for v in values]),
-                           minlength=self.nnz)
+        # the blocks in one array, in their order, copied once (a block from
+        # :func:`contract_laid` is a transposed view: ravel and concatenate copied it twice)
+        weights = np.empty(sum(np.size(v) for v in values))
+        at = 0
+        for v in values:
+            weights[at:at + np.size(v)].reshape(np.shape(v))[...] = v
+            at += np.size(v)
+        data = np.bincount(self.slot, weights=weights, minlength=self.nnz)
         A = sp.csr_matrix(self.shape)
         A.data, A.indices, A.indptr = data, self.indices, self.indptr
         return A
