@@ -286,7 +286,15 @@ def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def test_layout(test) -> np.ndarray:
     """A test-function array, (function, element, point) or stacked (term, function, element,
     point), as the right operand of :func:`contract_layout`: (element, [term x] point,
-    function)."""
+    function). A list of (function, element, point) arrays is taken as their stack, laid
+    out without it (the same array: each term copied once into place, where the stack and
+    the layout of it copied the film's operators twice per mesh)."""
+    if isinstance(test, (list, tuple)):
+        ni, ne, nq = np.shape(test[0])
+        out = np.empty((ne, len(test), nq, ni))
+        for s, op in enumerate(test):
+            out[:, s] = np.transpose(op, (1, 2, 0))
+        return out.reshape(ne, len(test) * nq, ni)
     if np.ndim(test) == 4:
         ns, ni, ne, nq = test.shape
         return np.einsum("sieq->esqi", test).reshape(ne, ns * nq, ni)
