@@ -24,7 +24,8 @@ scikit-fem's line element finder compares every point with every cell (quadratic
 mesh size); here a ``searchsorted`` on the sorted nodes picks the same cells, and the sum over
 the local functions runs in the order of the sparse product, so again the values are bitwise
 the same. The local functions' values at the last few point sets are kept (the driver asks
-for the nodes several times a solve). :class:`Composite` is scikit-fem's composite element
+for the nodes several times a solve); on :class:`HermiteLine` they are its values alone
+(:meth:`HermiteLine.values`, the same sums without the derivatives). :class:`Composite` is scikit-fem's composite element
 with its map of local functions computed once.
 
 Examples
