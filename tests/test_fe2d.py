@@ -195,3 +195,18 @@ def test_a_kept_result_holds_little_memory():
     assert problem.n_dofs == r["n_dofs"]
     assert np.allclose(problem.gap(r.state("state"), FoilParameters.from_case(case.updated(
         {"roller.speed": 21.0})), np.array([0.0])) * r.case.h_scale, r["h_center"], rtol=1e-9)
+
+
+def test_film_friction_is_the_local_friction_at_every_vertex(fast_result):
+    """The film's friction and regime (computed once per X line of vertices) equal
+    friction_for at each vertex's own gap, bit for bit."""
+    from webfem.physics.friction import friction_for
+
+    r = fast_result
+    film = r.film
+    assert np.unique(film.points[:, 0]).size < film.points.shape[0]   # lines of vertices
+    gap = film.h          # smooth roller: the film gap is the web's
+    loc = friction_for(r.case, gap, resting=True)
+    for key in ("chi_c", "mu"):
+        assert np.array_equal(getattr(film, key), loc[key])
+    assert np.array_equal(film.regime, loc["regime"].astype(float))

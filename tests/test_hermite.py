@@ -65,6 +65,21 @@ def test_gbasis_repeated_and_new_points():
         ours.gbasis(basis.mapping, basis.X, 4)
 
 
+def test_values_alone_bitwise():
+    """HermiteLine.values (the probes' path) is gbasis's values, bit for bit, at the
+    quadrature points and at one point per listed cell (as a probe asks)."""
+    mesh = line_mesh(X)
+    basis = Basis(mesh, ElementLineHermite(), intorder=4)
+    rng = np.random.default_rng(11)
+    cells = rng.integers(0, mesh.t.shape[1], 300)
+    pts = rng.uniform(0.0, 1.0, (1, cells.size, 1))
+    for where, tind in [(basis.X, np.arange(mesh.t.shape[1])), (pts, cells)]:
+        got = HermiteLine().values(basis.mapping, where, tind)
+        for i in range(4):
+            want = basis.elem.gbasis(basis.mapping, where, i, tind)[0]
+            np.testing.assert_array_equal(got[i], np.asarray(want))
+
+
 @pytest.mark.parametrize("order", [1, 2])
 def test_probes_bitwise(order):
     """Pressure and web values at points (inside cells, on nodes, on the mesh's ends) as

@@ -211,3 +211,38 @@ def test_noise_accepts_no_residual_above_its_floor():
     out = nw.newton(F, J, np.full(50, 1.5), tol=1e-9, step_tol=1e-10, max_iter=60,
                     noise=True)
     assert not out.converged
+
+
+def test_scaled_solve_is_the_diagonally_scaled_factorisation_to_the_bit():
+    """The scaled factorisation's scale is |diag|^(-1/2) of the ordered matrix (1 where the
+    diagonal is 0 or not stored), read from the plan's diagonal places: the same solution,
+    bit for bit, as scaling by ``B.diagonal()`` and factorising that matrix."""
+    rng = np.random.default_rng(5)
+    n = 30
+    M = sp.random(n, n, density=0.2, random_state=rng, format="coo")
+    keep = M.row != M.col
+    rows = np.concatenate([M.row[keep], np.arange(n)])
+    cols = np.concatenate([M.col[keep], np.arange(n)])
+    diag = rng.uniform(1.0, 1e6, n)
+    diag[7] = 0.0                                       # a stored zero on the diagonal
+    vals = np.concatenate([M.data[keep], diag])
+    stored = rows != 3                                  # row 3: no diagonal entry at all
+    stored |= rows != cols
+    A = sp.csr_matrix((vals[stored], (rows[stored], cols[stored])), shape=(n, n))
+    assert A[3, 3] == 0.0 and A.has_canonical_format
+    free = np.arange(1, n - 1)
+    b = rng.standard_normal(free.size)
+    got = nw.PatternSolver(scaled=True).solve(A, free, b)
+    plan = nw.PatternSolver._plan(A, free)
+    (indices, indptr, shape), gather, inv = plan[2], plan[3], plan[4]
+    B = sp.csc_matrix((A.data[gather], indices, indptr), shape=shape)
+    d = np.abs(B.diagonal())
+    s = np.where(d > 0.0, 1.0 / np.sqrt(np.where(d > 0.0, d, 1.0)), 1.0)
+    cols = np.repeat(np.arange(n - 2), np.diff(B.indptr))
+    B.data *= s[B.indices] * s[cols]
+    lu = nw.PatternSolver._factor(B, "NATURAL")
+    want = np.empty_like(b)
+    want[inv] = s * lu.solve(s * b[inv])
+    assert np.any(d == 0.0)
+    assert np.array_equal(got, want)
+    np.testing.assert_allclose(A[free][:, free] @ got, b, rtol=0, atol=1e-9)

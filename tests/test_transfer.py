@@ -12,13 +12,12 @@ import scipy.sparse as sp
 from skfem import (Basis, ElementLineHermite, ElementLineP1, ElementLineP2, ElementQuad1,
                    ElementQuad2)
 
-from webfem.fem.hermite import LineProbes
+from webfem.fem.hermite import HermiteLine, LineProbes
 from webfem.fem.mesh import graded_nodes, line_mesh
 from webfem.fem import transfer
 from webfem.fem.transfer import (basis_matrices, cellwise_matrices, film_basis, film_mesh,
-                                 interpolate_values,
-                                 quadrature_matrices, tensor_interpolation,
-                                 web_values, width_nodes)
+                                 interpolate_values, point_lines, quadrature_matrices,
+                                 tensor_grid, tensor_interpolation, web_values, width_nodes)
 
 
 def _hermite(X, x):
@@ -70,6 +69,8 @@ def test_film_basis_on_a_moved_mesh_is_scikit_fems(order, web_edges, strip):
     assert np.array_equal(ours.element_dofs, ref.element_dofs)
     assert np.array_equal(ours.doflocs, ref.doflocs)
     assert np.array_equal(ours.dx, ref.dx)
+    # the quadrature kept once per rule (transfer.quadrature) is scikit-fem's
+    assert np.array_equal(ours.X, ref.X) and np.array_equal(ours.W, ref.W)
     for a, b in zip(ours.basis, ref.basis):
         assert np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
         assert np.array_equal(a[0].grad, b[0].grad)
@@ -102,6 +103,11 @@ def test_web_values_are_the_hermite_basis_at_the_film_points(order):
     assert values.shape == (4,) + fbasis.dx.shape
     assert np.all(line.p[0, line.t[0, cell]] <= np.asarray(fbasis.global_coordinates()[0])
                   .min(axis=1) + 1e-12)
+    # webfem's Hermite element (values read without a basis on the reference points): the
+    # same bits as scikit-fem's element through a basis
+    ours = web_values(fbasis, Basis(line, HermiteLine(), intorder=6))
+    for a, b in zip(ours, (cell, dofs, values)):
+        assert np.array_equal(a, b)
 
 
 @pytest.mark.parametrize("order", [1, 2])
@@ -217,3 +223,7 @@ def test_tensor_interpolation_is_exact_on_a_nested_mesh(order):
     bent = u + 1e-3 * np.sin(7 * coarse.doflocs[0])
     assert np.max(np.abs(tensor_interpolation(X, Z, order, coarse.doflocs, bent, pts)
                          - want)) > 1e-5
+    # the mesh-only parts given (as FoilBearing2D.transfer keeps them): the same bits
+    kept = tensor_interpolation(X, Z, order, coarse.doflocs, u, pts,
+                                grid=tensor_grid(coarse.doflocs), lines=point_lines(pts))
+    assert np.array_equal(kept, got)

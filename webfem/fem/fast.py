@@ -185,8 +185,14 @@ class Pattern:
 
     def matrix(self, values) -> sp.csr_matrix:
         """The CSR matrix with the blocks' values (same order and shapes as the blocks)."""
-        data = np.bincount(self.slot, weights=np.concatenate([np.ravel(v) for v in values]),
-                           minlength=self.nnz)
+        # the blocks in one array, in their order, copied once (a block from
+        # :func:`contract_laid` is a transposed view: ravel and concatenate copied it twice)
+        weights = np.empty(sum(np.size(v) for v in values))
+        at = 0
+        for v in values:
+            weights[at:at + np.size(v)].reshape(np.shape(v))[...] = v
+            at += np.size(v)
+        data = np.bincount(self.slot, weights=weights, minlength=self.nnz)
         A = sp.csr_matrix(self.shape)
         A.data, A.indices, A.indptr = data, self.indices, self.indptr
         return A
@@ -217,11 +223,19 @@ def pattern_of(dof_pairs, shape) -> Pattern:
     ``dof_pairs`` ((row DOFs (function, element), column DOFs (function, element)) per
     block), kept in :data:`PATTERNS`."""
     h = hashlib.blake2b(repr(tuple(int(s) for s in shape)).encode(), digest_size=32)
+    # each array hashed once, then named by its place among the distinct ones: a system's
+    # blocks share their fields' DOF maps (the film's appeared in three of its four
+    # blocks), and hashing them was a sixth of building a 2-D system on a kept pattern
+    seen: dict = {}
     for r, c in dof_pairs:
         for a in (r, c):
-            a = np.ascontiguousarray(a, dtype=np.int64)
-            h.update(repr(a.shape).encode())
-            h.update(a.tobytes())
+            if id(a) not in seen:
+                seen[id(a)] = (len(seen), a)     # ``a`` held: its id stays its own
+                b = np.ascontiguousarray(a, dtype=np.int64)
+                h.update(b"new" + repr(b.shape).encode())
+                h.update(b.tobytes())
+            else:
+                h.update(b"seen" + repr(seen[id(a)][0]).encode())
     key = h.digest()
     pattern = PATTERNS.pop(key, None)
     if pattern is None:
@@ -272,7 +286,15 @@ def _unique_inverse(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def test_layout(test) -> np.ndarray:
     """A test-function array, (function, element, point) or stacked (term, function, element,
     point), as the right operand of :func:`contract_layout`: (element, [term x] point,
-    function)."""
+    function). A list of (function, element, point) arrays is taken as their stack, laid
+    out without it (the same array: each term copied once into place, where the stack and
+    the layout of it copied the film's operators twice per mesh)."""
+    if isinstance(test, (list, tuple)):
+        ni, ne, nq = np.shape(test[0])
+        out = np.empty((ne, len(test), nq, ni))
+        for s, op in enumerate(test):
+            out[:, s] = np.transpose(op, (1, 2, 0))
+        return out.reshape(ne, len(test) * nq, ni)
     if np.ndim(test) == 4:
         ns, ni, ne, nq = test.shape
         return np.einsum("sieq->esqi", test).reshape(ne, ns * nq, ni)

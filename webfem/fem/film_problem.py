@@ -33,8 +33,8 @@ from .newton import PatternSolver, newton
 from .outcome import SolveInfo
 from .picard import frozen_coefficient_picard
 from .systems import FilmSystem, width_load
-from .transfer import (film_basis, film_mesh, interpolate_values, quadrature_matrices,
-                       tensor_interpolation)
+from .transfer import (film_basis, film_mesh, interpolate_values, point_lines, quadrature,
+                       quadrature_matrices, tensor_grid, tensor_interpolation)
 
 __all__ = ["FilmConfig", "FoilBearing2D", "START_RTOL", "DIRECT_STEPS", "strip_weights"]
 
@@ -118,7 +118,8 @@ class FoilBearing2D:
         # a new Hermite element per mesh: it caches mesh data (scikit-fem 12); HermiteLine
         # evaluates its four functions at once, bitwise as scikit-fem's (the web's values at
         # each new point set: 9 % of a 24-point speed sweep's time with scikit-fem's)
-        self.wbasis = Basis(self.line, HermiteLine(), intorder=6)
+        web = HermiteLine()
+        self.wbasis = Basis(self.line, web, quadrature=quadrature(web.refdom, 6))
         self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
         # scikit-fem's basis, with the DOF numbering of a mesh of the same topology (a
         # moved mesh: a continued point's) shared
@@ -155,7 +156,7 @@ class FoilBearing2D:
         self.iW_ends = self.iWv[[int(np.argmin(px)), int(np.argmax(px))]]
         #: the web's uniform lift, where its ends are unknowns (Picard corrects along it)
         self.lift = ends.uniform_lift(self.n_dofs, self.iWv) if self.spans else None
-        self._mass, self._system, self._solver = None, None, None
+        self._mass, self._system, self._solver, self._lines = None, None, None, None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
         self._web_probes, self._average = LineProbes(self.wbasis), None
@@ -336,9 +337,20 @@ class FoilBearing2D:
         v = other.start_from_line(self, u, prm, pressure=False)
         v[:other.nP] = tensor_interpolation(self.X, self.Z, self.order,
                                             self.fbasis.doflocs, u[:self.nP],
-                                            other.fbasis.doflocs)
+                                            other.fbasis.doflocs, grid=self._dof_lines()[0],
+                                            lines=other._dof_lines()[1])
         v[other.fixed] = 0.0
         return v
+
+    def _dof_lines(self) -> tuple:
+        """The film DOFs' lines, as a field's source (:func:`webfem.fem.transfer.
+        tensor_grid`) and as target points (:func:`~webfem.fem.transfer.point_lines`):
+        functions of the mesh alone, found on first use (a continued point carries 4-5
+        states between its meshes)."""
+        if self._lines is None:
+            loc = self.fbasis.doflocs
+            self._lines = (tensor_grid(loc), point_lines(loc))
+        return self._lines
 
     # -- solvers -------------------------------------------------------------------------------
     def newton(self, u0, prm, tol, max_iter, rows=None, rtol=0.0, chord=True):

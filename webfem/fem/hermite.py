@@ -24,7 +24,8 @@ scikit-fem's line element finder compares every point with every cell (quadratic
 mesh size); here a ``searchsorted`` on the sorted nodes picks the same cells, and the sum over
 the local functions runs in the order of the sparse product, so again the values are bitwise
 the same. The local functions' values at the last few point sets are kept (the driver asks
-for the nodes several times a solve). :class:`Composite` is scikit-fem's composite element
+for the nodes several times a solve); on :class:`HermiteLine` they are its values alone
+(:meth:`HermiteLine.values`, the same sums without the derivatives). :class:`Composite` is scikit-fem's composite element
 with its map of local functions computed once.
 
 Examples
@@ -130,6 +131,23 @@ class HermiteLine(ElementLineHermite):
                     U[k][(slice(None),) + diff] += Vt[itr] * self._pbasis[diff][itr](*x)
         return [(U[0][i], U[1][i], U[2][i]) for i in range(n_fun)]
 
+    def values(self, mapping, X, tind) -> np.ndarray:
+        """The four functions' values at X, shape (function, element, point): :meth:`_all`'s
+        values alone, by the same operations in the same order (so bitwise the same),
+        without the derivatives :meth:`_all` computes too and nothing kept. Why: a probe
+        (:class:`LineProbes`) reads values only, at a new point set nearly every call (the
+        read-out's root brackets, the minimum's search), and the first and second
+        derivatives were two thirds of the work."""
+        if self.V is None:
+            self._pbasis_init(self.maxdeg, self.dim, self.derivatives, self.tensorial_basis)
+            self.V = np.linalg.inv(self._eval_dofs(mapping.mesh))
+        V = self.V[tind]
+        x = mapping.F(X, tind=tind)
+        out = np.zeros((V.shape[2],) + x[0].shape)
+        for itr, monomial in enumerate(self._pbasis[()]):
+            out += np.ascontiguousarray(V[:, itr, :].T)[:, :, None] * monomial(*x)
+        return out
+
     def gbasis(self, mapping, X, i, tind=None):
         last = self._last
         if last is None or last[0] is not mapping or not _same(last[1], X) \
@@ -210,8 +228,13 @@ class LineProbes:
             b = self.basis
             cells = self.cells(x)
             pts = b.mapping.invF(x[None, :, None], tind=cells)
-            table = [(np.asarray(self._elem.gbasis(b.mapping, pts, k, tind=cells)[0]).ravel(),
-                      self._dofs[k, cells]) for k in range(self._dofs.shape[0])]
+            if isinstance(self._elem, HermiteLine):
+                phi = self._elem.values(b.mapping, pts, cells)
+                table = [(phi[k].ravel(), self._dofs[k, cells])
+                         for k in range(self._dofs.shape[0])]
+            else:
+                table = [(np.asarray(self._elem.gbasis(b.mapping, pts, k, tind=cells)[0])
+                          .ravel(), self._dofs[k, cells]) for k in range(self._dofs.shape[0])]
             while len(self._tables) >= self.keep:
                 self._tables.pop(next(iter(self._tables)))
         self._tables[key] = table              # the most recently used last

@@ -179,11 +179,25 @@ class FilmSystem:
         self.pattern = self.fast.pattern
         self.hx = cell_lengths(fbasis)
         self._last = _LastState()
+        self._geometry = {}
         self._reference = None
+
+    def _geometry_at(self, beta):
+        """The roller's departure at the film's and the web's quadrature points and the
+        wrap's indicator at the web's, for the wrap ``beta``: functions of the mesh and beta
+        alone, computed once per beta (every state's coefficients read them)."""
+        if beta not in self._geometry:
+            x = self.w.x
+            kept = (forms.departure(self.T["x"], beta), forms.departure(x, beta),
+                    forms.in_wrap(x, beta))
+            for a in kept:
+                a.setflags(write=False)         # shared by every state's coefficients
+            self._geometry = {beta: (kept[0], kept[1:])}
+        return self._geometry[beta]
 
     def _film_values(self, P, PX, PZ, wv, prm, newton):
         T = self.T
-        H = (T["M"] @ wv + forms.departure(T["x"], prm.beta)).reshape(np.shape(P)) \
+        H = (T["M"] @ wv + self._geometry_at(prm.beta)[0]).reshape(np.shape(P)) \
             + self.groove
         return {**film_coefficients(H, P, PX, PZ, prm.as_form_args(), newton, self.hx),
                 **coupling_coefficients(P, self.width)}
@@ -195,7 +209,8 @@ class FilmSystem:
             P, gP = f.interpolate(u[:nP])
             W, dW, ddW = w.interpolate(u[nP:], 0, hess=True)
             return [self._film_values(P, gP[0], gP[1], u[nP:], prm, newton),
-                    web_coefficients(w.x, W, dW[0], ddW, prm.as_form_args())]
+                    web_coefficients(w.x, W, dW[0], ddW, prm.as_form_args(),
+                                     self._geometry_at(prm.beta)[1])]
         return self._last.get(u, prm.as_form_args(), bool(newton), compute)
 
     def residual(self, u, prm) -> np.ndarray:

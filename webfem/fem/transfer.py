@@ -26,9 +26,11 @@ import dataclasses
 
 import numpy as np
 import scipy.sparse as sp
+from .hermite import HermiteLine
 
 __all__ = ["width_nodes", "film_mesh", "film_basis", "quadrature_matrices", "basis_matrices",
            "web_values", "cellwise_matrices", "interpolate_values", "tensor_interpolation",
+           "tensor_grid", "point_lines", "quadrature",
            "TOPOLOGIES_KEPT"]
 
 #: Film mesh topologies kept (:func:`film_mesh`): a continued sweep point builds its
@@ -113,6 +115,26 @@ def _attach(mesh, topo) -> None:
     mesh._facets, mesh._t2f, mesh._f2t = topo["facets"], topo["t2f"], topo["f2t"]
 
 
+#: scikit-fem's quadrature rules by (reference domain, order), read-only (:func:`quadrature`)
+_QUADRATURES: dict = {}
+
+
+def quadrature(refdom, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """``skfem.quadrature.get_quadrature(refdom, intorder)``, computed once per rule (a
+    basis asks for it on every mesh: Gauss-Legendre nodes from an eigenvalue problem); the
+    arrays are read-only, being shared by every basis built with them."""
+    key = (refdom, int(intorder))
+    if key not in _QUADRATURES:
+        from skfem.quadrature import get_quadrature
+
+        X, W = get_quadrature(refdom, int(intorder))
+        X, W = np.array(X), np.array(W)
+        X.setflags(write=False)
+        W.setflags(write=False)
+        _QUADRATURES[key] = (X, W)
+    return _QUADRATURES[key]
+
+
 def film_basis(mesh, elem, intorder: int):
     """``skfem.Basis(mesh, elem, intorder=intorder)`` on a mesh from :func:`film_mesh`, to the
     last bit, built with less work: scikit-fem's DOF numbering (``skfem.Dofs``) shared by the
@@ -145,7 +167,8 @@ def film_basis(mesh, elem, intorder: int):
         return last[1]
     mapping.invDF = once
     try:
-        return Basis(mesh, elem, mapping=mapping, intorder=intorder, dofs=dofs)
+        return Basis(mesh, elem, mapping=mapping, quadrature=quadrature(elem.refdom, intorder),
+                     dofs=dofs)
     finally:
         del mapping.invDF
 
@@ -222,8 +245,15 @@ def web_values(film_basis, web_basis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     ref, where = np.unique(s, return_inverse=True)
     # the web basis's own element: scikit-fem 12's Hermite element caches data of its mesh
     # (the inverse Vandermonde matrices), which is this mesh
-    at = Basis(line, web_basis.elem, quadrature=(ref[None, :], np.ones(ref.size)))
-    vals = np.array([np.asarray(at.basis[i][0]) for i in range(at.Nbfun)])  # (4, cells, ref)
+    elem = web_basis.elem
+    if isinstance(elem, HermiteLine):
+        # the values alone, as a basis on that quadrature holds them (bitwise: the same
+        # element's sums on the same mapping), without building the basis
+        vals = elem.values(web_basis.mapping, ref[None, :], np.arange(line.t.shape[1]))
+    else:
+        at = Basis(line, elem, quadrature=(ref[None, :], np.ones(ref.size)))
+        vals = np.array([np.asarray(at.basis[i][0]) for i in range(at.Nbfun)])
+    # vals: (4, cells, ref)
     where = where.reshape(s.shape)
     values = vals[:, cell[:, None], where]
     return cell, np.asarray(web_basis.element_dofs)[:, cell], values
@@ -254,8 +284,22 @@ def quadrature_matrices(film_basis, web_basis) -> dict:
             "M_dofs": dofs}
 
 
+def tensor_grid(doflocs: np.ndarray) -> tuple:
+    """The DOF lines of a tensor film field (:func:`tensor_interpolation`'s ``grid``): the
+    distinct x and z values of ``doflocs`` and the line of each DOF."""
+    return _levels(doflocs[0]) + _levels(doflocs[1])
+
+
+def point_lines(points: np.ndarray) -> tuple:
+    """The distinct x and z values of ``points`` (shape (2, n)) and the index of each point's
+    (:func:`tensor_interpolation`'s ``lines``)."""
+    return (np.unique(points[0], return_inverse=True),
+            np.unique(points[1], return_inverse=True))
+
+
 def tensor_interpolation(X: np.ndarray, Z: np.ndarray, order: int, doflocs: np.ndarray,
-                         values: np.ndarray, points: np.ndarray) -> np.ndarray:
+                         values: np.ndarray, points: np.ndarray, grid: tuple | None = None,
+                         lines: tuple | None = None) -> np.ndarray:
     """A Q1/Q2 film field on the tensor mesh ``X`` x ``Z`` evaluated at ``points`` (shape
     (2, n); points outside are moved onto the nearest edge).
 
@@ -273,29 +317,35 @@ def tensor_interpolation(X: np.ndarray, Z: np.ndarray, order: int, doflocs: np.n
     >>> pts = np.array([[0.25, 1.75], [1.0, 0.3]])
     >>> tensor_interpolation(X, Z, 2, locs, f, pts).round(12).tolist()
     [1.0625, 3.1525]
+
+    ``grid`` (:func:`tensor_grid` of ``doflocs``) and ``lines`` (:func:`point_lines` of
+    ``points``): what depends on the meshes alone, computed once by a caller that carries
+    several states between the same meshes (:meth:`webfem.fem.film_problem.FoilBearing2D.
+    transfer`: the sorts in them were a third of a transfer); the same numbers to the bit.
     """
-    xs, ix = _levels(doflocs[0])
-    zs, iz = _levels(doflocs[1])
-    grid = np.full((xs.size, zs.size), np.nan)
-    grid[ix, iz] = values
-    wx, jx = _lagrange_at(np.asarray(X, float), order, xs, points[0])
-    wz, jz = _lagrange_at(np.asarray(Z, float), order, zs, points[1])
+    xs, ix, zs, iz = tensor_grid(doflocs) if grid is None else grid
+    (xu, xw), (zu, zw) = point_lines(points) if lines is None else lines
+    field = np.full((xs.size, zs.size), np.nan)
+    field[ix, iz] = values
+    wx, jx = _lagrange_at(np.asarray(X, float), order, xs, xu, xw)
+    wz, jz = _lagrange_at(np.asarray(Z, float), order, zs, zu, zw)
     out = np.zeros(points.shape[1])
     for a in range(wx.shape[0]):
         for b in range(wz.shape[0]):
-            out += wx[a] * wz[b] * grid[jx[a], jz[b]]
+            out += wx[a] * wz[b] * field[jx[a], jz[b]]
     if np.isnan(out).any():
         raise ValueError("tensor_interpolation: the field's DOFs do not form a tensor grid")
     return out
 
 
-def _lagrange_at(nodes: np.ndarray, order: int, levels: np.ndarray, x):
-    """:func:`_lagrange_1d` at ``x``, computed once per distinct value: another mesh's
-    DOFs lie on a few lines in x and in z (the 2-D film's 22,049 on 691 x and 33 z values),
-    and each weight is a function of its value alone, so the same numbers to the bit.
-    Carrying a state between the meshes of a continued sweep point (the two-grid start:
-    4-5 transfers a point) spent 5 % of the base case's 24-point speed sweep here."""
-    values, where = np.unique(x, return_inverse=True)
+def _lagrange_at(nodes: np.ndarray, order: int, levels: np.ndarray, values, where):
+    """:func:`_lagrange_1d` at ``values[where]``, computed once per distinct value
+    (``values``, ``where``: ``np.unique(x, return_inverse=True)`` of the points x):
+    another mesh's DOFs lie on a few lines in x and in z (the 2-D film's 22,049 on 691 x
+    and 33 z values), and each weight is a function of its value alone, so the same numbers
+    to the bit. Carrying a state between the meshes of a continued sweep point (the
+    two-grid start: 4-5 transfers a point) spent 5 % of the base case's 24-point speed
+    sweep here."""
     weights, index = _lagrange_1d(nodes, order, levels, values)
     return weights[:, where], index[:, where]
 

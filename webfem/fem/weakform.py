@@ -197,7 +197,7 @@ def _layout_of(space, ops: list, built: list) -> np.ndarray:
             if their[i:i + len(ops)] == ops:
                 nq = layout.shape[1] // len(their)
                 return layout[:, i * nq:(i + len(ops)) * nq, :]
-    layout = test_layout(np.stack([space.ops[o] for o in ops]))
+    layout = test_layout([space.ops[o] for o in ops])
     built.append((space, ops, layout))
     return layout
 
@@ -303,7 +303,7 @@ class FastForm:
                             filled.add(b.op)
                         del term
                     lay = layout if len(used) == len(ops) else test_layout(
-                        np.stack([part.spaces[key[0]].ops[o] for o in used]))
+                        [part.spaces[key[0]].ops[o] for o in used])
                     piece = contract_laid(lay, trial.reshape(trial.shape[0],
                                                              trial.shape[1], -1))
                     del trial
