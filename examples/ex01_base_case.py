@@ -20,7 +20,8 @@ import webfem
 case = webfem.load_case("cases/base.toml")
 results = {}
 with warnings.catch_warnings():
-    # the closed form warns that Eq. 21 lands the web at the outlet; the table shows it
+    # the closed form warns that Eq. 21's gap falls below h_c at the outlet, where it rests the
+    # web on its asperities; the table shows it
     warnings.simplefilter("ignore", webfem.errors.ValidityWarning)
     for model in ("closed-form", "fe1d", "fe2d"):
         results[model] = webfem.solve(case, model=model)

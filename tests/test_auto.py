@@ -67,7 +67,9 @@ def test_choices_differ_where_they_should():
     assert fitted["model_used"] == "fitted" and fitted["error_mu"] <= 0.3
     assert "flexible web" in fitted["error_basis"]
     assert landed["model_used"] == "fe1d"                   # web on its asperities
-    assert "lands the web" in landed["why"]
+    # the rejection says what the closed form does under its physics: with the friction from
+    # the loads it rests the web at h_c (it used to say "lands the web (h -> 0)" here too)
+    assert "rests the web at h_c" in landed["why"] and "h -> 0" not in landed["why"]
     # with every quantity judged, Eq. 21's h_min (it has no exit constriction) rules it out
     everything = webfem.solve(CASES[2], model="auto", tol=0.3)
     assert everything["model_used"] == "fe1d" and "closed form" in everything["why"]
@@ -118,3 +120,15 @@ def test_auto_moves_on_to_fe2d_when_fe1d_does_not_converge(monkeypatch):
     r = auto.solve(Case())
     assert r["model_used"] == "fe2d" and r["converged"]
     assert "fe1d: did not converge" in r["why"]
+
+
+def test_the_landed_rejection_is_true_for_each_physics():
+    """With the paper's physics Eq. 21 is clamped at 0 where it lands the web (as printed);
+    with the full physics the closed form rests the web at h_c: auto's rejection says which."""
+    paper = Case().updated({"roller.speed": 5.0, "model.physics": "paper"})
+    closed_paper = webfem.solve(paper, model="closed-form")
+    assert closed_paper["h_outlet"] == 0.0 and closed_paper["h_c"] > 0.0
+    r = webfem.solve(paper, model="auto", tol=0.1, quantity="mu")
+    assert "lands the web (h -> 0" in r["why"] and "rests the web at h_c" not in r["why"]
+    closed_full = webfem.solve(CASES[0], model="closed-form")
+    assert closed_full["h_outlet"] == pytest.approx(closed_full["h_c"], rel=1e-12)

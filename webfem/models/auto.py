@@ -7,8 +7,9 @@ fe2d, the reference, its mesh error (:mod:`webfem.models.mesh_error`). Candidate
 first:
 
 1. **closed form** (microseconds), unless outside Eq. 21's range (beta > 6, lambda > 7) or
-   where its gap falls below h_c in the wrap (Eq. 21 lands the web at h = 0, the FE models
-   rest it on its asperities). Eq. 21 has no exit constriction, so its h_min is never
+   where its gap falls below h_c in the wrap (with the friction from the loads it rests the
+   web at h_c, the asperities carrying all of T/R; with the paper's physics Eq. 21 lands it
+   at h = 0; the FE models share the load with the film and dip below h_c at the exit). Eq. 21 has no exit constriction, so its h_min is never
    within a tolerance below about 0.5: it answers only where mu (``quantity = "mu"``) or the
    central gap is the question.
 2. **fitted** (about 0.1 ms): a fit of fe2d solutions in the dimensionless groups
@@ -143,9 +144,24 @@ def _closed_verdict(r: Result, quantities, tol) -> tuple[bool, str]:
         return False, (f"closed form rejected: outside Eq. 21's range (beta = {s.beta:.3g}, "
                        f"lambda = {s.lambda_:.3g})")
     if s.h_outlet <= s.h_c:
-        return False, ("closed form rejected: its gap falls below h_c in the wrap, where it "
-                       "lands the web (h -> 0) and the FE models rest it on the asperities")
+        return False, "closed form rejected: " + _landed_text(r.case, s)
     return _verdict("closed form", stated_errors(r), quantities, tol)
+
+
+def _landed_text(case: Case, s) -> str:
+    """Why a closed form whose gap falls below h_c is not trusted, true for its physics: with
+    the friction from the loads it rests the web at h_c, with the paper's it keeps Eq. 21's
+    gap, clamped at 0 where it lands the web."""
+    if case.friction_variant == "loads":
+        return ("its gap falls below h_c in the wrap, where it rests the web at h_c on "
+                "asperities carrying all of T/R; the FE models share the load with the film "
+                "and dip below h_c at the exit")
+    if s.h_outlet <= 0.0:
+        return ("its gap falls below h_c in the wrap, where Eq. 21 lands the web (h -> 0, "
+                "clamped as the paper prints it) and the FE models rest it on the asperities "
+                "at h_c")
+    return ("its gap falls below h_c in the wrap, where it keeps Eq. 21's gap as the paper "
+            "prints it and the FE models rest the web on the asperities at h_c")
 
 
 def _answer(r: Result, quantities, tol, why) -> Result:

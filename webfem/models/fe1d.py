@@ -43,7 +43,7 @@ from ..fem.scaling import FoilParameters
 from ..result import Result, State
 from .driver import Discretisation, Start, solve_fe
 from .line import FoilBearing1D
-from .model_error import fe1d_errors
+from .model_error import fe1d_basis, fe1d_errors
 from .options import FE1DOptions
 from .outcome import Facts
 
@@ -292,10 +292,9 @@ def with_model_error(r: Result) -> Result:
     s = r.summary
     if s.error_h_center is None:
         return r
-    model = fe1d_errors(r.case, s, r.diagnostics)
+    model = fe1d_errors(r.case, s, r.diagnostics, r.fields)
     errors = {f"error_{q}": s.get(f"error_{q}", 0.0) + e for q, e in model.items()}
-    basis = (f"mesh: {s.error_basis}; model: the edge leakage left out (1.48/lambda in the "
-             "central gap, 1.87/lambda in the minimum, doubled)")
+    basis = f"mesh: {s.error_basis}; model: {fe1d_basis(r.case)}"
     return dataclasses.replace(r, summary=s.replace(**errors, error_basis=basis))
 
 
