@@ -1,9 +1,9 @@
 """Balanced stopping: Newton ends where its algebraic error is negligible against the mesh
 error the answer states.
 
-A continued sweep point solves two meshes, the coarser one (the mesh error estimate's
-partner and the fine mesh's start) and the answer's, each to a residual of ``tol`` (1e-9,
-scaled) by default: several chord steps past the iterate whose error in every quantity a
+A continued sweep point, and a cold start on a smooth roller (whose mesh is decided up front),
+solves two meshes, the coarser one (the mesh error estimate's partner and the fine mesh's
+start) and the answer's, each to a residual of ``tol`` (1e-9, scaled) by default: several chord steps past the iterate whose error in every quantity a
 user reads is already far below the error the answer states. :func:`acceptor` gives
 :func:`webfem.fem.newton.newton` the test that stops there: at an iterate ``u`` in Newton's
 local convergence (the simplified correction ``du`` at most

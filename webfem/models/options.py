@@ -311,10 +311,10 @@ class FE2DOptions(FE1DOptions):
                                   "the film, or held at ambient (the deep-groove limit, for "
                                   "checks)", "choice", choices=("solved", "ambient"))
     tol: float = option(1e-9, "residual tolerance, 2-norm in scaled units (at this default "
-                        "a continued sweep point's Newton may stop earlier: "
+                        "a smooth roller's fe2d Newton may stop earlier: "
                         "algebraic_share; set to any other value, every solve meets it)",
                         "float", lo=0.0, lo_open=True, hi=1e-2)
-    algebraic_share: float = option(1e-3, "continued sweep points, tol at its default: "
+    algebraic_share: float = option(1e-3, "smooth roller, Newton, tol at its default: "
                                     "Newton also stops once the bound of its algebraic "
                                     "error in h_center, h_min, mu and the contact share is "
                                     "at most this times error_tol; the bound is added to "
