@@ -52,9 +52,12 @@ def test_the_estimate_confirms_the_mesh_decided_up_front(speed):
     assert "coarse" not in r.diagnostics.solver            # the result keeps no problem
 
 
-def test_the_estimate_takes_no_newton_step_on_the_reused_mesh(monkeypatch):
+@pytest.mark.parametrize("share", [0.0, None], ids=["to-tol", "balanced"])
+def test_the_estimate_takes_no_newton_step_on_the_reused_mesh(monkeypatch, share):
     """The coarse solve of the estimate starts from the coarse state already solved: zero
-    steps (counted: Newton's calls on the estimate's coarse mesh)."""
+    steps (counted: Newton's calls on the estimate's coarse mesh). Where the coarse solve
+    stopped on its algebraic error bound (balanced stopping, the default) the estimate
+    takes its state as solved: no call at all."""
     steps = []
     original = FoilBearing2D.solve_newton
 
@@ -64,8 +67,14 @@ def test_the_estimate_takes_no_newton_step_on_the_reused_mesh(monkeypatch):
         return u, info
 
     monkeypatch.setattr(FoilBearing2D, "solve_newton", counted)
-    r = webfem.solve(BASE, "fe2d", error_tol=TARGET)
+    extra = {} if share is None else {"algebraic_share": share}
+    r = webfem.solve(BASE, "fe2d", error_tol=TARGET, **extra)
     assert r["converged"]
+    if share is None:
+        # the answer's solve is the last: none on the coarse mesh, whose bounds are stated
+        assert steps[-1][0] == r["n_dofs"]
+        assert "algebraic error was negligible" in r["error_basis"]
+        return
     # the answer's solve, then the estimate's on the coarse mesh: no step there
     assert steps[-1][0] < r["n_dofs"] and steps[-1][1] == 0
 

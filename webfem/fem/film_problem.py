@@ -165,6 +165,12 @@ class FoilBearing2D:
         #: True: Newton tries the coupled system straight from its start (a solved state
         #: carried over from another mesh, or the 1-D solution) before a film-only pre-solve
         self.direct = False
+        #: :func:`webfem.fem.newton.newton`'s ``accept`` for the coupled solves of this
+        #: problem (balanced stopping, :mod:`webfem.models.algebraic`; None: to ``tol``)
+        self.accept = None
+        #: what ``accept`` returned for the state the last coupled solve ended on (its
+        #: algebraic error bounds), None where that solve met ``tol`` or found nothing
+        self.bounds = None
 
     def variant(self, X=None, Z=None, **config) -> "FoilBearing2D":
         """A problem like this one on other nodes and/or with ``config`` changed (the
@@ -364,9 +370,13 @@ class FoilBearing2D:
         large as random residuals' of that size; rejected, the same mesh was solved twice
         more (6 s of 25) to an answer 8e-7 from it (mu; stated errors 1e-2 to 2e-2). The
         held ends keep the strict test."""
-        return newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
-                      self.free if rows is None else rows, tol=tol, max_iter=max_iter,
-                      rtol=rtol, chord=chord, solver=self.solver, noise=self.spans)
+        out = newton(lambda v: self.residual(v, prm), lambda v: self.jacobian(v, prm), u0,
+                     self.free if rows is None else rows, tol=tol, max_iter=max_iter,
+                     rtol=rtol, chord=chord, solver=self.solver, noise=self.spans,
+                     accept=self.accept if rows is None else None)
+        if rows is None:
+            self.bounds = out.algebraic
+        return out
 
     def consistent_pressure(self, u, prm, tol=1e-8, rtol=0.0):
         """Film pressure for the web as it is (a film-only Newton solve, to ``tol`` or

@@ -216,6 +216,9 @@ class NewtonResult:
     residual: float                      # ||F(u)||_2 over the free unknowns at the end
     history: list[float] = field(default_factory=list)   # ||F|| per iteration
     reason: str = ""
+    #: what ``accept`` returned for an iterate accepted by it (its algebraic error bounds),
+    #: else None
+    algebraic: object = None
 
 
 #: A residual at most this many times the tolerance is accepted when the Newton correction is
@@ -272,13 +275,21 @@ CHORD_GAIN = 10.0
 #: median iterations grow 5 -> 8).
 CHORD_TRY = 100.0  # and such a chord step is kept only at this gain too
 
+#: ``accept`` is asked about an iterate only when the simplified Newton correction there is
+#: at most this times the step that led to it (max-norms): the contraction of Newton's (or
+#: the chord iteration's) local convergence, under which the distance to the discrete
+#: solution is at most the correction / (1 - theta) (Deuflhard's error-oriented test).
+ACCEPT_CONTRACTION = 0.1
+
 
 def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.spmatrix],
            u0: np.ndarray, free: np.ndarray | None = None, tol: float = 1e-10,
            step_tol: float = 1e-10, max_iter: int = 50, min_damping: float = 1e-4,
            monitor: Callable[[int, float], None] | None = None,
            rtol: float = 0.0, chord: bool = True,
-           solver: PatternSolver | None = None, noise: bool = False) -> NewtonResult:
+           solver: PatternSolver | None = None, noise: bool = False,
+           accept: Callable[[np.ndarray, np.ndarray, float], object] | None = None
+           ) -> NewtonResult:
     """Solve F(u) = 0 for the ``free`` entries of u (others keep u0's values).
 
     Converged when ||F||_2 <= max(tol, rtol ||F(u0)||_2), or when the full Newton step's
@@ -321,6 +332,19 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
     (:func:`noise_correction`): the correction is then the floor's noise amplified by
     J^-1, however large J^-1 makes it (a problem with a soft mode: a stiff web held
     through long spans, :mod:`webfem.fem.ends`).
+
+    ``accept(u, du, theta)``: balanced stopping. After a full step (Newton's or a kept chord
+    step) with the residual still above the tolerance, the simplified Newton correction
+    ``du = -J_k^-1 F(u)`` (the last factorisation: one triangular solve, reused as the next
+    chord step's) estimates the iterate's algebraic error; where it is at most
+    :data:`ACCEPT_CONTRACTION` times the step just taken, ``accept`` is called (``du`` on
+    every unknown, 0 off ``free``; ``theta`` that ratio) and an answer other than None
+    ends the solve, converged, with the iterate ``u`` (not ``u + du``) and that answer in
+    :attr:`NewtonResult.algebraic`: the caller's bound of the iterate's error in what it
+    reads, which it must state (:func:`webfem.models.algebraic.acceptor`). A chord step
+    that lowers the residual but too little to be kept is asked about too before the
+    Newton step replaces it: accepted, it saves that step's Jacobian and factorisation (on
+    the base case's 24-point speed sweep 78 -> 71 factorisations of the continued points).
     """
     u = np.array(u0, dtype=float, copy=True)
     free = np.arange(u.size) if free is None else np.asarray(free)
@@ -331,6 +355,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
         tol = max(tol, rtol * norm)
     report("newton", 0, norm, tol)
     last = None                       # the last factorisation, for chord steps
+    pending = None                    # (residual, its correction by ``last``): accept's
     it = chords = 0
     chained = False                   # the last step was a chord step, kept
     while it - chords < max_iter:         # chord steps do not spend the Newton budget
@@ -346,8 +371,12 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
         if chord and last is not None and (near or norm * CHORD_TRY <= history[-2]
                                            or (chained and norm * CHORD_GAIN
                                                <= history[-2])):
-            trial, r_trial, n_trial = _chord_step(F, last, u, r, free)
+            # the correction accept's test made from this residual, not solved again
+            solve = last if pending is None or pending[0] is not r else \
+                (lambda b, d=pending[1]: -d)
+            trial, r_trial, n_trial = _chord_step(F, solve, u, r, free)
             if n_trial <= tol or n_trial * (CHORD_GAIN if easy else CHORD_TRY) <= norm:
+                step = float(np.max(np.abs(trial[free] - u[free])))
                 u, r, norm = trial, r_trial, n_trial
                 history.append(norm)
                 report("newton", it, norm, tol)
@@ -355,7 +384,25 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                     monitor(it, norm)
                 chords += 1
                 chained = True
+                if accept is not None and norm > tol:
+                    done, pending = _balanced(accept, last, u, r, free, step, it, norm,
+                                              history)
+                    if done is not None:
+                        return done
                 continue
+            if accept is not None and n_trial < norm:
+                # a chord step that lowers the residual too little to go on with may still
+                # end at an iterate whose algebraic error is negligible: that saves the
+                # Jacobian and the factorisation of the Newton step (the history then
+                # ends on it)
+                done, _ = _balanced(accept, last, trial, r_trial, free,
+                                    float(np.max(np.abs(trial[free] - u[free]))), it,
+                                    n_trial, history + [n_trial])
+                if done is not None:
+                    report("newton", it, n_trial, tol)
+                    if monitor:
+                        monitor(it, n_trial)
+                    return done
         chained = False
         # the last factorisation and Jacobian let go before the new ones are built: held
         # through them, they set the peak (a 390,819-unknown grooved strip: 3.4 GB)
@@ -417,6 +464,11 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
         report("newton", it, norm, tol)
         if monitor:
             monitor(it, norm)
+        if accept is not None and alpha == 1.0 and norm > tol and not tiny:
+            done, pending = _balanced(accept, last, u, r, free, np.max(np.abs(du)), it, norm,
+                                      history)
+            if done is not None:
+                return done
         if alpha == 1.0 and tiny:
             if norm <= FLOOR_FACTOR * tol:
                 return NewtonResult(u, True, it, norm, history, "step below tolerance")
@@ -458,6 +510,27 @@ def _at_floor(norm, tol, floor) -> str:
 def _noise_step(du, u, free) -> str:
     rel = float(np.max(np.abs(du)) / (1.0 + np.max(np.abs(u[free]))))
     return f"; no step lowers it, the Newton correction {rel:.2g} (relative) is its noise"
+
+
+def _balanced(accept, solve, u, r, free, step, it, norm, history):
+    """``newton``'s balanced stop at ``u`` (residual ``r``, reached by a step of max-norm
+    ``step``): ``(NewtonResult or None, (r, correction))``, the correction kept for the
+    next chord step from ``u``."""
+    with np.errstate(all="ignore"):
+        dfree = -solve(r)
+    pending = (r, dfree)
+    if not np.all(np.isfinite(dfree)) or not step > 0.0:
+        return None, pending
+    theta = float(np.max(np.abs(dfree)) / step)
+    if theta > ACCEPT_CONTRACTION:
+        return None, pending
+    du = np.zeros_like(u)
+    du[free] = dfree
+    bound = accept(u, du, theta)
+    if bound is None:
+        return None, pending
+    return NewtonResult(u, True, it, norm, history, "algebraic error negligible against "
+                        "the mesh error target (balanced stopping)", algebraic=bound), pending
 
 
 def _chord_step(F, solve, u, r, free):

@@ -36,6 +36,9 @@ class SolveInfo:
     adapt_rounds: int = 0
     omegas: list | None = None
     block_iterations: dict | None = None
+    #: the last solve's bounds of its algebraic error per quantity read, where Newton
+    #: stopped on them (:mod:`webfem.models.algebraic`); None: solved to the tolerance
+    algebraic: dict | None = None
 
     @classmethod
     def of(cls, out, steps=(1.0,)) -> "SolveInfo":
@@ -43,7 +46,8 @@ class SolveInfo:
         ``iterations``, ``residual``, ``history`` and ``reason``)."""
         return cls(converged=bool(out.converged), iterations=int(out.iterations),
                    residual=float(out.residual), history=list(out.history),
-                   reason=out.reason, steps=list(steps))
+                   reason=out.reason, steps=list(steps),
+                   algebraic=getattr(out, "algebraic", None))
 
     def after(self, before: "SolveInfo", note: str = "") -> "SolveInfo":
         """This solve as the continuation of ``before``: its iterations added, the residual

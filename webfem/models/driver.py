@@ -249,13 +249,16 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
                                                  or estimate_if(problem, u, prm)):
         problem, u, finer, mesh_error = estimate_mesh_error(disc, case, problem, u, prm,
                                                             options, _iterate, solved,
-                                                            estimate_if)
+                                                            estimate_if, info.algebraic)
         info.iterations += mesh_error.iterations
         if finer is not None:
             rounds = mesh_error.rounds
             # the start's notes (a cold start after a failed continued one) stay said
             noted = info.reason.partition(" (")[2]
+            # the answer is the finer mesh's, solved to the tolerance (the earlier one's
+            # bounds, if any, stay added to the stated errors: mesh_error.algebraic)
             info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
+                                "algebraic": finer.algebraic,
                                 "history": list(info.history) + list(finer.history),
                                 "reason": f"{finer.reason} (on the mesh the error estimate "
                                           f"asked for, " + (mesh_error.refined or

@@ -30,7 +30,9 @@ import numpy as np
 from ..case import Case
 from ..fem.scaling import FoilParameters
 from ..progress import stage
+from ..fem.outcome import SolveInfo
 from .admissible import admissibility
+from .algebraic import stated
 from .readout import READ_QUANTITIES, errors_between, read_out
 
 __all__ = ["MeshError", "estimate_mesh_error", "coarser_nodes", "bisected_nodes", "kept_nodes",
@@ -73,6 +75,9 @@ class MeshError:
     #: ``(problem, state)`` solved on the answer's coarser mesh (the estimate's; None on a
     #: grooved film, estimated by direction, or when it did not converge)
     coarse: tuple | None = None
+    #: the algebraic error bounds added to ``errors`` (:func:`webfem.models.algebraic.
+    #: stated`), per quantity; None: every state solved to the tolerance
+    algebraic: dict | None = None
 
 
 def coarser_nodes(nodes: np.ndarray, keep=()) -> np.ndarray:
@@ -114,7 +119,7 @@ def _newton_options(options):
 
 
 def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, options,
-                        iterate, solved=None, estimate_if=None) -> tuple:
+                        iterate, solved=None, estimate_if=None, algebraic=None) -> tuple:
     """The estimate for the solved state ``u`` of ``problem``, refining while it exceeds
     ``options.error_tol``. ``iterate(problem, u0, prm, options) -> (u, info)`` solves on a
     mesh. Returns ``(problem, u, info_or_None, MeshError)``: the answer's problem and state
@@ -127,7 +132,11 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     ``solved``: ``(problem, state)`` already solved on some mesh (a cold 2-D start's solve on
     the coarser mesh first); when it is this answer's coarser mesh, the coarse solve starts
     from that state instead of from the answer carried over (the same discrete solution, to
-    Newton's tolerance, in fewer steps: none when it is still converged).
+    Newton's tolerance, in fewer steps: none when it is still converged). Where that
+    problem's last solve stopped on its algebraic error bounds (``problem.bounds``: a
+    continued point's coarser mesh, :mod:`webfem.models.algebraic`), the state is taken as
+    solved, and its bounds, with the answer's ``algebraic`` ones, are added to the stated
+    errors (:func:`webfem.models.algebraic.stated`).
 
     ``estimate_if(problem, u, prm) -> bool``: whether the answer on a refined mesh is still the
     one its caller returns (None: always); the refinement stops once it is not (a groove
@@ -150,19 +159,31 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
     # stated one)
     source = None
     left_error = dict.fromkeys(out.errors, 0.0)
+    coarse_bounds = None        # the coarser state's algebraic error bounds, where stopped
     if split:
         parts, source = _by_direction(disc, case, problem, u, prm, options, here, out, Xc, Zc)
     elif Xc is not None:
         with stage(f"{disc.name} error estimate on the coarser mesh"):
+            bounds = None
             if _same_mesh(solved, Xc, Zc):
                 coarse, uc = solved[0], solved[1].copy()
+                bounds = getattr(coarse, "bounds", None)
             else:
                 coarse, uc = disc.remeshed(problem, u, prm, Xc, Zc, options)
-            uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
+            if bounds is not None:
+                # stopped where its algebraic error is negligible: not solved on
+                info = SolveInfo(converged=True, iterations=0, algebraic=bounds)
+            else:
+                uc, info = coarse.solve_newton(uc, prm, _newton_options(options))
         out.iterations += info.iterations
         if info.converged:
             out.coarse = (coarse, uc)
+            coarse_bounds = info.algebraic
             out.errors = errors_between(case, here, read_out(case, coarse, uc, prm))
+            if algebraic is not None or coarse_bounds is not None:
+                out.errors = stated(out.errors, algebraic, coarse_bounds)
+                out.algebraic = stated(dict.fromkeys(out.errors, 0.0), algebraic,
+                                       coarse_bounds)
             out.basis = (f"change from the mesh with cells twice as long ({coarse.n_dofs:,} "
                          f"against {problem.n_dofs:,} unknowns)")
     user_mesh = options.mesh is not None or options.nodes is not None
@@ -276,12 +297,18 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
             # not refined further: the next halving is of the kind that failed, and on 1 mm
             # board it is 0.24 M unknowns, stopped after 2 min at 7 GB without an answer
             break
+    if out.rounds and out.algebraic is not None and out.errors["h_center"] is not None:
+        # a refined answer's changes are from the states stopped early: their bounds kept
+        out.errors = stated(out.errors, algebraic, coarse_bounds)
     if out.errors["h_center"] is None:
         out.basis = "none: no coarser mesh solved"
         out.notes.append("no mesh error estimate: the mesh with cells twice as long did not "
                          "converge")
     elif user_mesh and _exceeds(out.errors, options.error_tol):
         out.notes.append(_user_note(out, options.error_tol))
+    if out.algebraic is not None and out.errors["h_center"] is not None:
+        out.basis += (f"; Newton stopped where its algebraic error was negligible, its "
+                      f"bounds added (at most {max(out.algebraic.values()):.2g})")
     return problem, u, last_info, out
 
 

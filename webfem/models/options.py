@@ -310,6 +310,16 @@ class FE2DOptions(FE1DOptions):
     groove_pressure: str = option("solved", "grooved roller: the groove pressure solved with "
                                   "the film, or held at ambient (the deep-groove limit, for "
                                   "checks)", "choice", choices=("solved", "ambient"))
+    tol: float = option(1e-9, "residual tolerance, 2-norm in scaled units (at this default "
+                        "a smooth roller's fe2d Newton may stop earlier: "
+                        "algebraic_share; set to any other value, every solve meets it)",
+                        "float", lo=0.0, lo_open=True, hi=1e-2)
+    algebraic_share: float = option(1e-3, "smooth roller, Newton, tol at its default: "
+                                    "Newton also stops once the bound of its algebraic "
+                                    "error in h_center, h_min, mu and the contact share is "
+                                    "at most this times error_tol; the bound is added to "
+                                    "the stated errors (0: every solve to tol)", "float",
+                                    lo=0.0, hi=0.1)
 
     @classmethod
     def line_options(cls, options: "FE2DOptions") -> FE1DOptions:

@@ -81,7 +81,11 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
         continuation=tuple(info.steps), options=options, wrap_h=ro.h,
         wrap_w=ro.wts / prm.beta, wrap_p=ro.p, wrap_dpdx=ro.dpdx, omegas=info.omegas,
         block_iterations=info.block_iterations,
-        solver={**start.kept, "problem": disc.kept(problem), "state": u})
+        solver={**start.kept, "problem": disc.kept(problem), "state": u,
+                # the answer's own algebraic error bounds where Newton stopped on them
+                # (:mod:`webfem.models.algebraic`; None: solved to the tolerance), and
+                # those added to the stated errors
+                "algebraic": info.algebraic, "algebraic_stated": mesh_error.algebraic})
     return Result(case, summary, node_fields(case, problem, u, prm), diagnostics,
                   disc.film(case, problem, u, prm),
                   restart=disc.state(case, problem, u, start, options, mesh_error.coarse,
