@@ -146,8 +146,31 @@ def test_idler_verdict_is_unsure_where_mu_s_stated_error_straddles_one(capsys):
     fe = margin_curve(webfem.load_case("cases/idler.toml"), [12.4], "fe1d")
     assert fe.verdicts() == ["SLIPS"]      # a finer model decides: fe2d's margin is 0.13
     assert main(["idler", "idler", "--model", "fitted", "--num", "3"]) == 0
-    assert "unsure: the answer's stated error of mu" in capsys.readouterr().out
+    assert "the answer's stated error of mu puts the margin on both sides" in \
+        capsys.readouterr().out
     assert main(["solve", "idler", "--set", "roller.speed=12.4", "--set", "web.speed=12.4",
                  "--model", "fitted"]) == 0
     assert "idler unsure: margin 1.6, but mu's stated error allows 0 to" in \
         capsys.readouterr().out
+
+
+def test_idler_without_stated_errors_or_answers_says_so(capsys):
+    """An unconverged speed or one solved without an estimate states no error: the curve
+    keeps its rows (NaN error, the margin itself as its range), and a speed without an
+    answer gives no verdict and no slip speed (it once gave 13.6 m/s from two unconverged
+    margins)."""
+    import math
+
+    from webfem.idler import margin_curve
+    case = webfem.load_case("cases/idler.toml")
+    curve = margin_curve(case, [1.0, 20.0], "fe1d", estimate=False)
+    assert all(math.isnan(e) for e in curve.error_mu)
+    assert curve.verdicts() == ["holds", "SLIPS"] and curve.slip_speed() is not None
+    failed = margin_curve(case, [1.0, 20.0], "fe1d", max_iter=2)
+    assert failed.verdicts() == ["no answer", "no answer"] and failed.slip_speed() is None
+    assert main(["idler", "idler", "--model", "fe1d", "--opt", "max_iter=2", "--num", "2"]) == 0
+    assert "no speed was answered: no verdict" in capsys.readouterr().out
+    assert main(["idler", "idler", "--model", "fitted", "--num", "4", "--min-speed", "1",
+                 "--max-speed", "9"]) == 0
+    out = capsys.readouterr().out
+    assert "unsure at 9 m/s" in out and "holds over the whole range" not in out

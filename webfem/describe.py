@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from .physics.effects import margin_range, margin_verdict
+
 __all__ = ["describe", "verdict", "error_text"]
 
 _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
@@ -24,9 +26,8 @@ def verdict(s, case=None) -> str:
     ``unsure`` where mu's stated error puts the margin on both sides of 1
     (:func:`webfem.physics.effects.margin_range`)."""
     if case is not None and s.error_mu is not None:
-        from .physics.effects import margin_range
         low, high = margin_range(case, s.delta_T_required, s.mu_onset, s.error_mu)
-        if low < 1.0 <= high:
+        if margin_verdict(low, high) == "unsure":
             return (f"  idler unsure: margin {s.slip_margin:.2g}, but mu's stated error allows "
                     f"{low:.2g} to {high:.2g} (needs {s.delta_T_required:.3g} N/m, can carry "
                     f"{s.delta_T_available:.3g} N/m at mu_onset {s.mu_onset:.3g}); a finer "

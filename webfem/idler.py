@@ -23,7 +23,7 @@ import numpy as np
 from .api import solve_along
 from .case import Case
 from .errors import InputError
-from .physics.effects import margin_range
+from .physics.effects import margin_range, margin_verdict
 
 __all__ = ["MarginCurve", "margin_curve"]
 
@@ -75,13 +75,8 @@ class MarginCurve:
         ``no answer``."""
         low = self.margin_low or self.slip_margin
         high = self.margin_high or self.slip_margin
-        out = []
-        for ok, lo, hi in zip(self.converged, low, high):
-            if not ok:
-                out.append("no answer")
-            else:
-                out.append("holds" if lo >= 1.0 else "SLIPS" if hi < 1.0 else "unsure")
-        return out
+        return [margin_verdict(lo, hi) if ok else "no answer"
+                for ok, lo, hi in zip(self.converged, low, high)]
 
     def answered(self) -> str:
         """Which model answered: ``fe1d``, or for auto ``auto: fe2d at every speed`` /
@@ -98,14 +93,17 @@ class MarginCurve:
     def slip_speed(self) -> float | None:
         """The first line speed where the margin falls below 1 (linear interpolation), or
         None when the idler holds over the whole range."""
-        m = np.asarray(self.slip_margin, float)
+        # only answers count: an unconverged solve's margin is no evidence either way
+        ok = np.asarray(self.converged, bool)
+        m = np.asarray(self.slip_margin, float)[ok]
+        u = np.asarray(self.speeds, float)[ok]
         below = np.nonzero(m < 1.0)[0]
         if below.size == 0:
             return None
         i = int(below[0])
         if i == 0:
-            return self.speeds[0]
-        u0, u1, m0, m1 = self.speeds[i - 1], self.speeds[i], m[i - 1], m[i]
+            return float(u[0])
+        u0, u1, m0, m1 = u[i - 1], u[i], m[i - 1], m[i]
         return float(u0 + (1.0 - m0) * (u1 - u0) / (m1 - m0))
 
 
@@ -130,7 +128,9 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
         results = [next(answered) if ok else None for ok in inside]
     else:
         results = list(solve_along(cases, model, options, **values))
-    pick = {k: tuple(float(r[k]) if r is not None else math.nan for r in results)
+    # an unconverged answer, or one made without an estimate, states no error: NaN
+    pick = {k: tuple(float(r[k]) if r is not None and r[k] is not None else math.nan
+                     for r in results)
             for k in keys + ("error_mu",)}
     ranges = [margin_range(c, r["delta_T_required"], r["mu_onset"], r["error_mu"])
               if r is not None else (math.nan, math.nan) for c, r in zip(cases, results)]
@@ -141,4 +141,3 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
                                        for r in results),
                        models_used=used, margin_low=tuple(lo for lo, _ in ranges),
                        margin_high=tuple(hi for _, hi in ranges), **pick)
-

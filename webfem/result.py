@@ -19,8 +19,10 @@ regime       lubrication regime covering most of the wrap: boundary, mixed or fl
 lambda       width parameter L/(2 R eps^(1/3))
 beta         wrap parameter B/eps^(1/3)
 eq21_valid   True inside Eq. 21's stated range (beta > 6 and lambda > 7)
-converged    True when the solver met its tolerance and the answer is admissible (the
-             closed form: False where it has no answer, the reason in ``solver_message``)
+converged    True when the solver met its tolerance (or, balanced stopping, bounded its
+             algebraic error and added the bound to the stated errors) and the answer is
+             admissible (the closed form: False where it has no answer, the reason in
+             ``solver_message``)
 iterations   nonlinear iterations (0 for the closed form)
 n_dofs       unknowns of the discrete problem (0 for the closed form)
 solve_time_s wall time of the solve [s]

@@ -88,10 +88,21 @@ def _table(curve, units: str) -> str:
         lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g} {span:>19}  "
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
-    lines.append("  the idler holds over the whole range" if slip is None
-                 else f"  the idler slips above about {display(slip, 'speed', units, 3)}")
-    if "unsure" in curve.verdicts():
-        lines.append("  unsure: the answer's stated error of mu puts the margin on both sides "
-                     "of 1 (a finer model, e.g. --model fe1d or fe2d, or a lower --opt tol, "
-                     "decides)")
+    verdicts = curve.verdicts()
+    unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]
+    if slip is not None:
+        lines.append(f"  the idler slips above about {display(slip, 'speed', units, 3)}"
+                     + (" (by the margins; their stated ranges leave it unsure)"
+                        if unsure else ""))
+    elif not unsure and all(v == "holds" for v in verdicts):
+        lines.append("  the idler holds over the whole range")
+    elif not unsure and "holds" in verdicts:
+        lines.append("  the idler holds wherever an answer was found")
+    elif not unsure:
+        lines.append("  no speed was answered: no verdict")
+    if unsure:
+        at = ", ".join(display(u, "speed", units, 3) for u in unsure)
+        lines.append(f"  unsure at {at}: the answer's stated error of mu puts the margin on "
+                     "both sides of 1; a finer model decides (--model fe1d or fe2d; under "
+                     "auto, a lower --opt tol)")
     return "\n".join(lines)

@@ -3,16 +3,18 @@ error the answer states.
 
 A continued sweep point, and a cold start on a smooth roller (whose mesh is decided up front),
 solves two meshes, the coarser one (the mesh error estimate's partner and the fine mesh's
-start) and the answer's, each to a residual of ``tol`` (1e-9, scaled) by default: several chord steps past the iterate whose error in every quantity a
-user reads is already far below the error the answer states. :func:`acceptor` gives
+start) and the answer's, each to a residual of ``tol`` (1e-9, scaled) by default: several
+chord steps past the iterate whose error in every quantity a user reads is already far below
+the error the answer states. :func:`acceptor` gives
 :func:`webfem.fem.newton.newton` the test that stops there: at an iterate ``u`` in Newton's
 local convergence (the simplified correction ``du`` at most
 :data:`webfem.fem.newton.ACCEPT_CONTRACTION` times the step that led there), the change
 ``du`` makes to h_center, h_min, mu and the contact share (:func:`~webfem.models.readout.
 errors_between`, the estimate's own measure), times :data:`SAFETY`, bounds the iterate's
-algebraic error in them (plus :data:`FLOOR`); the iterate is accepted where that bound is at most ``share`` x
-``error_tol``. The bounds are added to the stated errors (:func:`stated`): the answer's
-twice (its error, and its share of the estimate's change), the coarser mesh's once.
+algebraic error in them (plus :data:`FLOOR`); the iterate is accepted where that bound is at
+most ``share`` x ``error_tol``. The bounds are added to the stated errors (:func:`stated`):
+the answer's twice (its error, and its share of the estimate's change), the coarser mesh's
+once.
 
 Where it applies is decided in :func:`enabled` alone: Newton with the mesh error estimate
 on, ``tol`` left at its default (a ``tol`` the user sets is met strictly) and

@@ -39,14 +39,13 @@ from ..case import Case
 from ..cores import usable_cores
 from ..errors import NoAdmissibleSolution
 from ..physics.contact import REGIMES, contact_gap, contact_pressure
-from ..physics.effects import included, traction_summaries
+from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result
 from ..summary import Summary
 from . import fit_groups as fg
 from .fit_kernel import ONE_THREAD_FROM, STACKED, Kernel, Stack, blas_one_thread
 from .options import FittedOptions
-from .readout import MU_SCALE
 
 __all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "read_profiles",
            "threads", "BLOCK",

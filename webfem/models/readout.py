@@ -153,8 +153,6 @@ def _read_out(case: Case, problem, u, prm: FoilParameters) -> ReadOut:
                    compression=max(0.0, -min(float(np.min(h)), Hmin * Hs)))
 
 
-
-
 def error_scale(case: Case, name: str, value: float) -> float:
     """What an error in quantity ``name`` at ``value`` is measured against: the larger of
     the gap and the roughness sigma (a gap below the roughness matters only through the

@@ -38,8 +38,9 @@ import numpy as np
 
 from .friction import delta_T_from_mu
 
-__all__ = ["MU_SCALE", "margin_range", "EFFECTS", "SWITCH_OFF", "CLOSED_FORM_CARRIES", "included", "left_out",
-           "idler_check", "idler_torque", "traction_summary", "traction_summaries"]
+__all__ = ["MU_SCALE", "margin_range", "margin_verdict", "EFFECTS", "SWITCH_OFF",
+           "CLOSED_FORM_CARRIES", "included", "left_out", "idler_check", "idler_torque",
+           "traction_summary", "traction_summaries"]
 
 #: Every effect, in the order tables list them.
 EFFECTS = ("inertia", "bending", "slip", "isothermal-permeation", "load-friction",
@@ -223,3 +224,13 @@ def margin_range(case, required: float, mu: float, error_mu: float | None):
     d = error_mu * max(abs(mu), MU_SCALE * case.friction.mu_cc)
     return (T * math.expm1(max(mu - d, 0.0) * B) / required,
             T * math.expm1(max(mu + d, 0.0) * B) / required)
+
+
+def margin_verdict(low: float, high: float) -> str:
+    """``holds`` where the slip margin's whole stated range (:func:`margin_range`) is at or
+    above 1, ``SLIPS`` where all of it is below 1, else ``unsure``.
+
+    >>> margin_verdict(1.2, 1.5), margin_verdict(0.2, 0.9), margin_verdict(0.8, 1.3)
+    ('holds', 'SLIPS', 'unsure')
+    """
+    return "holds" if low >= 1.0 else "SLIPS" if high < 1.0 else "unsure"
