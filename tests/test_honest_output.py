@@ -50,3 +50,12 @@ def test_report_explains_negative_gap(resting):
     assert "Note: The web rests on the asperities" in warnings_section
     # in US units the depth is converted with the gap
     assert "mil into them" in report_html(resting, units="us")
+
+
+def test_report_labels_mu_by_sliding_speed():
+    sliding = report_html(closed())       # base: U_r = 20 m/s, U_w = 0
+    row = re.search(r"<td>mu</td>.*?</tr>", sliding).group(0)
+    assert "onset of slip" not in row and "slides 20 m/s" in row
+    still = report_html(closed(**{"web.speed": 20.0}))
+    row = re.search(r"<td>mu</td>.*?</tr>", still).group(0)
+    assert "nothing sliding: at the onset of slip" in row

@@ -48,7 +48,7 @@ SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
 #: Summary key -> (unit, meaning) for the summary table in SI (gaps in um, x_min in mm); in
 #: other units a key of :data:`webfem.units.ROLES` shows its display unit.
 SUMMARY_UNITS = {
-    "mu": ("-", "wrap-averaged friction coefficient (nothing sliding: at the onset of slip)"),
+    "mu": ("-", "wrap-averaged friction coefficient"),
     "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
     "mu_film": ("-", "nothing sliding: the film's own drag at these speeds"),
     "delta_T_film": ("N/m", "nothing sliding: the belt formula's delta_T for mu_film"),
@@ -185,13 +185,24 @@ def _summary(result, units: str = "si") -> str:
         value = data.get(key)
         if value is None:
             continue
-        if key == "h_min" and resting_text(data):
+        if key == "mu":
+            meaning = f"{meaning} {_mu_when(data, units)}"
+        elif key == "h_min" and resting_text(data):
             meaning = f"{meaning}; {_in_units(resting_text(data), units)}"
         elif key == "h_c":
             meaning += _in_units(contact_gap_text(data), units)
         value, unit = _shown(key, value, unit, units)
         rows.append((key, _num(value), unit, meaning))
     return _table(("quantity", "value", "unit", "meaning"), rows)
+
+
+def _mu_when(s, units: str) -> str:
+    """When the case's mu applies: at the onset of slip where nothing slides (U_s = 0), else
+    at the stated speeds, the web sliding U_s over the roller."""
+    if not s.get("U_slide"):
+        return "(nothing sliding: at the onset of slip)"
+    speed = f"{convert(abs(s.U_slide), 'speed', units):.4g} {unit_label('speed', units)}"
+    return f"(at the stated speeds: the web slides {speed} over the roller, U_s = |U_r - U_w|)"
 
 
 def _in_units(text: str, units: str) -> str:
