@@ -44,6 +44,7 @@ from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result
 from ..summary import Summary
 from . import fit_groups as fg
+from .fit_file import read_fit
 from .fit_kernel import ONE_THREAD_FROM, STACKED, Kernel, Stack, blas_one_thread
 from .options import FittedOptions
 from .readout import MU_SCALE
@@ -66,25 +67,27 @@ class OutsideDomain(NoAdmissibleSolution):
 @lru_cache(maxsize=4)
 def coefficients(path: str | None = None) -> dict:
     """The shipped fit (or the one at ``path``): the kernel, the box, the stated-error
-    table and what it was trained on."""
+    table and what it was trained on.
+
+    Raises
+    ------
+    webfem.errors.InputError
+        ``path`` holds no fit (:func:`webfem.models.fit_file.read_fit` says what is
+        wrong); :class:`~webfem.models.options.FittedOptions` reads it when the option is
+        set, so every command refuses it before solving.
+    """
     p = Path(path) if path else COEFFICIENTS
-    if not p.is_file():
+    if not p.is_file() and not path:
         raise NoAdmissibleSolution(f"the fitted model's coefficients {p} are missing: build "
                                    "them with `webfem fit build`")
-    with np.load(p, allow_pickle=False) as data:
-        d = {k: data[k] for k in data.files}
-    names = tuple(str(n) for n in d.get("scalar_names", ()))
-    scalars, j = [], 0
-    while f"s{j}_centres" in d:
-        scalars.append(Kernel.from_arrays(d, f"s{j}"))
-        j += 1
-    kernel = Kernel.from_arrays(d, "k")
-    return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"], "hi": d["hi"],
-            "edges": d["region_edges"], "errors": d["region_errors"],
+    fit = read_fit(str(p))
+    d, kernel, scalars = fit["arrays"], fit["kernel"], fit["scalars"]
+    return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"],
+            "hi": d["hi"], "edges": d["region_edges"], "errors": d["region_errors"],
             # a file from before the Dn bands states one error per gap region
             "dn_edges": d.get("dn_edges", np.empty(0)),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
-            "scalar_names": names}
+            "scalar_names": fit["scalar_names"]}
 
 
 #: The type the kernels' radial function and weight products are evaluated in
