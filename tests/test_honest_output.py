@@ -59,3 +59,17 @@ def test_report_labels_mu_by_sliding_speed():
     still = report_html(closed(**{"web.speed": 20.0}))
     row = re.search(r"<td>mu</td>.*?</tr>", still).group(0)
     assert "nothing sliding: at the onset of slip" in row
+
+
+def test_plot_under_auto_draws_what_the_chosen_model_has(tmp_path, capsys):
+    from webfem.cli import main
+    out = tmp_path / "v3"
+    assert main(["solve", "idler", "--opt", "tol=0.99", "--plot", "--vtu", str(out),
+                 "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert (out / "idler_auto_film.png").is_file() and "error" not in err
+    assert "answered: no 2-D film" in err
+    # a model named without a film is refused before anything is solved or written
+    assert main(["solve", "idler", "--model", "fitted", "--plot", "--vtu",
+                 str(tmp_path / "v4")]) == 2
+    assert not (tmp_path / "v4").exists()
