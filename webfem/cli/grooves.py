@@ -117,20 +117,25 @@ def _print_map(designs, best, mu_min: float, units: str = "si") -> None:
         return convert(value, "position", units)
 
     for speed, b in best.items():
+        here = [d for d in designs if d.speed == speed]
+        flagged = [d for d in here if d.flag and d.converged and d.mu >= mu_min]
         print(f"roller speed {display(speed, 'speed', units)}"
               + (f" ({60 * speed:.0f} m/min)" if units == "si" else "")
-              + f", mu_min {mu_min:g} (* feasible):")
+              + f", mu_min {mu_min:g} (* feasible"
+              + (", ! mu >= mu_min but flagged" if flagged else "") + "):")
         print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %      mu   "
-              f"h_center {thin:2}  contact share")
-        for d in designs:
-            if d.speed != speed:
-                continue
+              f"h_center {thin:2}  h_min {thin:2}  contact share")
+        for d in here:
             mu = f"{d.mu:7.4f}" if d.converged else f"  no answer: {_short(d.message)}"
             hc = f"{convert(d.h_center, 'thin', units):11.3g}" if d.converged else ""
-            cs = f"{d.contact_share:14.3f}" if d.converged else ""
-            mark = "*" if d.feasible else " "
+            hm = f"{convert(d.h_min, 'thin', units):9.3g}" if d.h_min is not None else ""
+            cs = f"{d.contact_share:15.3f}" if d.converged else ""
+            mark = "*" if d.feasible else "!" if d in flagged else " "
             print(f"{mark} {g(d.pitch):8.3g}  {g(d.width):9.3g}  {g(d.depth):8.3g}  "
-                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{cs}")
+                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{hm}{cs}")
+        for d in flagged:
+            print(f"  ! {g(d.pitch):.3g} {size} / {g(d.width):.3g} {size} groove: {d.flag} "
+                  f"(its warning in the CSV and --json): not counted as feasible")
         if b is None:
             print("  no design keeps mu >= mu_min: finer pitches or narrower lands")
         else:
