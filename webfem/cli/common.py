@@ -25,8 +25,8 @@ import tempfile
 import textwrap
 from pathlib import Path
 
-from ..bundled import bundled_cases, locate_case
-from ..case import Case, load_case, parse_assignment
+from ..bundled import bundled_cases, load_case, locate_case
+from ..case import Case, parse_assignment
 from ..cores import usable_cores
 from ..errors import InputError
 from ..models.options import Options
