@@ -40,6 +40,9 @@ def test_summary_prints_the_rounding_floor_reason():
     floor = solve(nw.STRICT_BELOW).reason
     at_floor = r.summary.replace(solver_message=floor)
     assert f"solver: {floor}" in describe(dataclasses.replace(r, summary=at_floor))
+    balanced = "algebraic error negligible against the mesh error target (balanced stopping)"
+    early = r.summary.replace(solver_message=balanced)
+    assert f"solver: {balanced}" in describe(dataclasses.replace(r, summary=early))
 
 
 @pytest.fixture(scope="module")

@@ -100,9 +100,11 @@ def describe(result) -> str:
         f"  converged = {s.converged}, iterations = {s.iterations}, "
         f"n_dofs = {s.n_dofs}, time = {s.solve_time_s * 1e3:.3f} ms",
     ]
-    if s.solver_message and ("rounding floor" in s.solver_message or not s.converged):
-        # converged above the tolerance (at the residual's rounding floor) or not at all:
-        # the residual printed below is not the tolerance's, so the reason goes beside it
+    if s.solver_message and (not s.converged or any(
+            why in s.solver_message for why in ("rounding floor", "balanced stopping"))):
+        # converged above the tolerance (at the residual's rounding floor, or stopped where
+        # the algebraic error is negligible) or not at all: the residual printed below is
+        # not the tolerance's, so the reason goes beside it
         lines.append(f"  solver: {s.solver_message}")
     errors = error_text(s)
     lines.append(f"  stated error: {errors}; {s.error_basis}" if errors else
