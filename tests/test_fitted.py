@@ -3,6 +3,8 @@ shipped fit's stated errors on fresh points and the drift guard against the curr
 
 import json
 
+import math
+
 import numpy as np
 import pytest
 
@@ -299,9 +301,19 @@ def test_solve_many_answers_as_solve_does_case_by_case():
     assert webfem.solve_many([], model="fitted") == []
 
 
-def test_solve_many_names_the_case_outside_the_domain():
-    with pytest.raises(fitted.OutsideDomain, match="case 1: no fitted answer: lam = "):
-        webfem.solve_many([Case(), Case().updated({"web.width": 0.002})], model="fitted")
+def test_solve_many_keeps_the_case_outside_the_domain():
+    """The case outside is kept in its place, not answered, saying why; the others keep
+    their answers (webfem.solve_many keeps every point, whatever the model)."""
+    inside, outside = Case(), Case().updated({"web.width": 0.002})
+    many = webfem.solve_many([inside, outside, inside], model="fitted")
+    assert [r["converged"] for r in many] == [True, False, True]
+    assert many[1]["solver_message"].startswith("no fitted answer: lam = ")
+    assert many[1]["warnings"] == (many[1]["solver_message"],)
+    assert math.isnan(many[1]["mu"]) and many[1].to_dict()["h_min"] is None
+    assert many[0]["mu"] == many[2]["mu"]
+    assert math.isclose(many[0]["mu"], webfem.solve(inside, model="fitted")["mu"], rel_tol=1e-12)
+    with pytest.raises(fitted.OutsideDomain, match="no fitted answer: lam = "):
+        webfem.solve(outside, model="fitted")
 
 
 def test_vectorised_groups_and_traction_equal_the_per_case_ones():

@@ -256,7 +256,8 @@ def test_grooves_raise_the_traction_loss_speed():
 
 
 def test_cli_refuses_bad_values_before_creating_the_folder(calls, tmp_path, capsys):
-    for bad, words in ((["--loss-lands", "0.9,1.5"], "land fraction = 1.5"),
+    for bad, words in ((["--loss-lands", "0.9,1.5"],
+                        "--loss-lands = '0.9,1.5': 1.5 is out of range"),
                        (["--speed", "0"], "roller speed = 0.0"),
                        (["--mu-min", "-1"], "mu_min = -1.0")):
         out = tmp_path / "new"

@@ -253,11 +253,11 @@ def test_grooves_sizing_command(capsys, tmp_path):
 
 def test_grooves_sizing_refuses_bad_lists(capsys):
     assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--lands", "1.5"]) == 2
-    assert "land fraction = 1.5" in capsys.readouterr().err
+    assert "--lands = '1.5': 1.5 is out of range" in capsys.readouterr().err
     assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "a,b"]) == 2
-    assert "comma-separated" in capsys.readouterr().err
+    assert "--pitches = 'a,b'" in (err := capsys.readouterr().err) and "comma-separated" in err
     assert main(["grooves", "cases/base.toml", "--mu-min", "0.2", "--pitches", "0"]) == 2
-    assert "groove pitch = 0.0" in capsys.readouterr().err
+    assert "--pitches = '0': 0 is out of range" in capsys.readouterr().err
 
 
 # -- the edge strip and the sag warning (issue 22) --------------------------------------------

@@ -307,6 +307,10 @@ def test_sweeps_are_where_users_are_told():
     import webfem.case
     import webfem.sweepspec
     assert webfem.Sweep is webfem.sweepspec.Sweep
-    assert webfem.load_sweep is webfem.sweepspec.load_sweep
+    # webfem.load_sweep takes a bundled case's name too: webfem.sweepspec's on the file
+    import webfem.bundled
+    assert webfem.load_sweep is webfem.bundled.load_sweep
+    assert webfem.load_sweep("fig10_wrap") == webfem.sweepspec.load_sweep(
+        webfem.bundled.find_case("fig10_wrap"))
     with pytest.raises(AttributeError, match="webfem.case.Sweep is webfem.sweepspec.Sweep"):
         webfem.case.Sweep

@@ -183,7 +183,10 @@ def test_groove_designs_copy_and_chart(tmp_path, monkeypatch):
     (row, *_) = read(copy)
     assert list(row) == ["speed_ft_per_min", "pitch_in", "width_in", "depth_in",
                          "land_fraction", "mu", "h_center_mil", "contact_share",
-                         "converged", "feasible", "message"]
+                         "converged", "feasible", "message",
+                         # extended: the stated errors are relative, not converted
+                         "h_min_mil", "error_h_center", "error_h_min", "error_mu",
+                         "error_contact_share", "warnings", "flag"]
     assert float(row["pitch_in"]) == pytest.approx(0.05)
     assert write_in_units([d.to_dict() for d in designs], path, "si") is None
     seen = capture(monkeypatch, groove_charts)

@@ -8,8 +8,10 @@ Public face: :class:`Case`, :func:`load_case`, :func:`solve`, :func:`sweep`.
 ['beta', 'converged', 'delta_T']
 """
 
-from .case import Case, CaseError, load_case
-from .sweepspec import Sweep, load_sweep
+from .case import Case, CaseError
+from .sweepspec import Sweep
+# a case file or a bundled case's name ("base"), as webfem.solve takes
+from .bundled import load_case, load_sweep
 from .errors import ConvergenceError, InputError, ValidityWarning
 from .result import Result, SUMMARY_KEYS
 from .api import MODELS, solve, solve_along, solve_many, sweep

@@ -24,10 +24,10 @@ from typing import Callable, Iterable, Iterator
 from .bundled import as_case, find_case
 from .case import Case
 from .sweepspec import Sweep, load_sweep
-from .errors import ConvergenceError, ValidityWarning
+from .errors import ConvergenceError, NoAdmissibleSolution, ValidityWarning
 from .models.options import Options
 from .models.registry import MODELS, make_options, model_spec
-from .result import Result
+from .result import Result, refused
 
 __all__ = ["MODELS", "solve", "solve_along", "solve_many", "sweep"]
 
@@ -112,9 +112,13 @@ def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
                **values) -> list[Result]:
     """Solve many cases at once: the closed form and the fitted model evaluate every point
     in one vectorised call (summaries and their wrap profiles, no film fields); the FE
-    models and auto walk them with :func:`solve_along`. A closed-form point without an
-    answer comes back with ``converged = False``; a case outside the fitted model's domain
-    is an error naming it (:class:`webfem.models.fitted.OutsideDomain`).
+    models and auto walk them with :func:`solve_along`.
+
+    Every model keeps every point, in order: a point it cannot answer (outside the fitted
+    model's domain, no closed-form answer, no admissible FE solution, not converged) comes
+    back with ``converged = False`` and the reason in ``solver_message`` and ``warnings``
+    (:func:`webfem.result.refused` where there are no numbers), so one refused point does
+    not lose the others' answers. Input errors (an unknown option) still raise.
 
     >>> rs = solve_many([Case().updated({"roller.speed": u}) for u in (20.0, 30.0)],
     ...                 model="closed-form")
@@ -129,7 +133,16 @@ def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
     if model == "fitted":
         from .models.fitted import solve_many as fitted_many
         return fitted_many(cases, make_options(model, options, **values))
-    return list(solve_along(cases, model, options, **values))
+    opts = make_options(model, options, **values)
+    out: list[Result] = []
+    while len(out) < len(cases):
+        # a refused point ends solve_along's walk: keep it and walk on from the next, cold
+        try:
+            for result in solve_along(cases[len(out):], model, opts):
+                out.append(result)
+        except NoAdmissibleSolution as err:
+            out.append(refused(cases[len(out)], model, str(err)))
+    return out
 
 
 def sweep(spec: Sweep | str | os.PathLike, model: str = "auto",

@@ -13,14 +13,18 @@ True
 
 from __future__ import annotations
 
+import difflib
 import os
 from importlib import resources
 from pathlib import Path
+from typing import Any, Mapping
 
-from .case import Case, load_case
+from . import case as _case
+from . import sweepspec as _sweepspec
+from .case import Case
 from .errors import InputError
 
-__all__ = ["bundled_cases", "locate_case", "find_case", "as_case"]
+__all__ = ["bundled_cases", "locate_case", "find_case", "as_case", "load_case", "load_sweep"]
 
 
 def bundled_cases() -> dict[str, Path]:
@@ -60,11 +64,50 @@ def find_case(text: str | os.PathLike) -> Path:
     return locate_case(text)[0]
 
 
+def existing_case(text: str | os.PathLike) -> Path:
+    """The case file ``text`` names (:func:`locate_case`); where there is none, an input
+    error saying so and naming the closest case it may have meant (a bundled case, or a
+    .toml file in the folder it names)."""
+    path = find_case(text)
+    if path.exists():
+        return path
+    name = Path(text)
+    stem = name.name.removesuffix(".toml")
+    folder = name.parent
+    here = {p.name.removesuffix(".toml") for p in folder.glob("*.toml")} if folder.is_dir() \
+        else set()
+    bare = str(folder) in ("", ".")
+    near = difflib.get_close_matches(stem, sorted(here | (set(bundled_cases()) if bare
+                                                          else set())), n=1)
+    where = ("no such file here and no bundled case of that name" if bare
+             else f"no such file in {folder}")
+    hint = (f"; did you mean '{near[0] if bare else folder / (near[0] + '.toml')}'?"
+            if near else "")
+    raise InputError(f"case file '{text}' does not exist ({where}){hint} (`webfem cases` "
+                     "lists the bundled cases)")
+
+
+def load_case(case: str | os.PathLike, overrides: Mapping[str, Any] | None = None) -> Case:
+    """Read a case file, or a bundled case's name (``"base"``), with ``overrides`` (dotted
+    keys): :func:`webfem.case.load_case` of the file :func:`locate_case` finds.
+
+    >>> load_case("base").web.tension
+    80.0
+    """
+    return _case.load_case(existing_case(case), overrides)
+
+
+def load_sweep(case: str | os.PathLike, overrides: Mapping[str, Any] | None = None):
+    """Read a case file's (or a bundled case's) ``[sweep]`` and ``[[series]]`` tables
+    (:func:`webfem.sweepspec.load_sweep`)."""
+    return _sweepspec.load_sweep(existing_case(case), overrides)
+
+
 def as_case(case: Case | str | os.PathLike) -> Case:
     """A :class:`Case` from a Case, a case file or a bundled case's name."""
     if isinstance(case, Case):
         return case
     if isinstance(case, (str, os.PathLike)):
-        return load_case(find_case(case))
+        return load_case(case)
     raise InputError(f"case = {case!r} is not valid: must be a webfem.Case, a case file "
                      "or the name of a bundled case (`webfem cases`)")

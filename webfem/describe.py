@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .physics.effects import margin_range, margin_verdict
 
-__all__ = ["describe", "verdict", "error_text"]
+__all__ = ["describe", "verdict", "error_text", "resting_text", "contact_gap_text"]
 
 _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
           "contact_share": "contact share"}
@@ -19,6 +19,31 @@ def error_text(s) -> str | None:
     parts = [f"{_NAMES[q]} {v:.1g}" for q, v in values.items() if v is not None]
     return ", ".join(parts) + (" (gaps against max(h, sigma), mu against max(|mu|, 0.1 mu_cc), "
                                "the contact share absolute)")
+
+
+def resting_text(s) -> str | None:
+    """Why a gap is below zero, or None where the web does not rest on the roller:
+    ``the web rests on the asperities, pressed 2.25 um into them``.
+
+    A nominal gap h < 0 is the web's mean surface plane below the roller's crest, its
+    asperities and surface layer compressed by -h (docs/model.md, "Webs that rest on the
+    roller"): an answer, but one a reader takes for an error unless it is said next to it.
+    """
+    depth = s.get("compression")
+    if depth is None and s.get("h_min") is not None and s.h_min < 0:
+        depth = -s.h_min
+    if not s.get("resting") and not (depth and depth > 0):
+        return None
+    return (f"the web rests on the asperities, pressed {depth * 1e6:.3g} um into them: a gap "
+            "below 0 is their compression")
+
+
+def contact_gap_text(s) -> str:
+    """What a negative contact gap h_c means, or "" where h_c >= 0."""
+    if s.get("h_c") is None or s.h_c >= 0:
+        return ""
+    return (f" (below 0: contact alone carries T/R only with the web pressed "
+            f"{-s.h_c * 1e6:.3g} um into the asperities)")
 
 
 def verdict(s, case=None) -> str:
@@ -62,8 +87,9 @@ def describe(result) -> str:
         f"  lambda = {s.lambda_:.3g}, beta = {s.beta:.3g}, Eq. 21 range "
         + ("met" if s.eq21_valid else "NOT met (beta > 6 and lambda > 7)"),
         f"  gap: inlet {s.h_inlet * um:.3f} um, centre {s.h_center * um:.3f} um, "
-        f"outlet {s.h_outlet * um:.3f} um, minimum {s.h_min * um:.3f} um",
-        f"  h_c = {s.h_c * um:.3f} um, 3 sigma = {3 * s.sigma * um:.3f} um; "
+        f"outlet {s.h_outlet * um:.3f} um, minimum {s.h_min * um:.3f} um"
+        + (f" ({resting_text(s)})" if resting_text(s) else ""),
+        f"  h_c = {s.h_c * um:.3f} um{contact_gap_text(s)}, 3 sigma = {3 * s.sigma * um:.3f} um; "
         f"regime {s.regime} (wrap shares: boundary {s.share_boundary:.2f}, "
         f"mixed {s.share_mixed:.2f}, fluid {s.share_fluid:.2f})",
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
@@ -75,6 +101,12 @@ def describe(result) -> str:
         f"  converged = {s.converged}, iterations = {s.iterations}, "
         f"n_dofs = {s.n_dofs}, time = {s.solve_time_s * 1e3:.3f} ms",
     ]
+    if s.solver_message and (not s.converged or any(
+            why in s.solver_message for why in ("rounding floor", "balanced stopping"))):
+        # converged above the tolerance (at the residual's rounding floor, or stopped where
+        # the algebraic error is negligible) or not at all: the residual printed below is
+        # not the tolerance's, so the reason goes beside it
+        lines.append(f"  solver: {s.solver_message}")
     errors = error_text(s)
     lines.append(f"  stated error: {errors}; {s.error_basis}" if errors else
                  "  stated error: none (no estimate was made)")

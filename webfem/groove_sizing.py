@@ -4,8 +4,10 @@ the traction-loss speed of each groove geometry.
 The question users bring (issue 15): which groove keeps mu above ``mu_min`` at a given line
 speed, and how much land (contact area, heat transfer, marking) does it cost? For each
 design (pitch p_g, land fraction a/p_g, depth delta) at each speed :func:`groove_map` solves
-the grooved 2-D film (fe2d) and marks the designs with mu >= mu_min; the recommended one is
-the feasible design with the largest land fraction (ties: the larger mu).
+the grooved 2-D film (fe2d) and marks the designs with mu >= mu_min as feasible, unless the
+answer's own warning says its film is not what fe2d computes (the web sagging into wide
+grooves: ``flag``); the recommended one is the feasible design with the largest land fraction
+(ties: the larger mu). Each design keeps its h_min, stated errors and warnings.
 :func:`loss_speed_map` finds, per geometry, the roller speed at which mu falls to ``mu_min``
 (:func:`webfem.traction.traction_loss_speed` with fe2d), beside the smooth roller's.
 
@@ -32,6 +34,7 @@ from typing import Callable, Sequence
 from .api import solve
 from .case import Case
 from .errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
+from .models.groove_domain import sag_warning
 from .models.registry import make_options
 from .sweeps.keyed import run_points
 from .sweeps.workers import Processes, check_workers
@@ -60,7 +63,13 @@ LOSS_SPEED_RANGE = (1.0, 100.0)
 LOSS_SCAN = 8
 
 MAP_COLUMNS = ("speed", "pitch", "width", "depth", "land_fraction", "mu", "h_center",
-               "contact_share", "converged", "solver_message")
+               "contact_share", "converged", "solver_message", "h_min", "error_h_center",
+               "error_h_min", "error_mu", "error_contact_share", "warnings", "flag")
+
+#: A design's ``flag`` where the web sags into its grooves by more than the model holds
+#: (:func:`webfem.models.groove_domain.sag_warning`): its film over the land edges is not
+#: what fe2d computes, so its mu does not make it feasible.
+SAG_FLAG = "web sags into the grooves: the film over the land edges is not what fe2d computes"
 LOSS_COLUMNS = ("pitch", "width", "depth", "land_fraction", "loss_speed", "mu_peak",
                 "speed_peak", "evaluations", "converged", "message")
 
@@ -80,9 +89,19 @@ class GrooveDesign:
     converged: bool
     feasible: bool
     message: str = ""       # why there is no answer (the solver's or the model's message)
+    #: the smallest gap [m], the stated errors (relative, as the summary's), the answer's
+    #: warnings, and why a design whose mu meets mu_min is not feasible ("" none:
+    #: :data:`SAG_FLAG`)
+    h_min: float | None = None
+    error_h_center: float | None = None
+    error_h_min: float | None = None
+    error_mu: float | None = None
+    error_contact_share: float | None = None
+    warnings: tuple[str, ...] = ()
+    flag: str = ""
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {**asdict(self), "warnings": list(self.warnings)}
 
 
 @dataclass(frozen=True)
@@ -235,8 +254,15 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
                 workers)
     return [GrooveDesign(r["speed"], r["pitch"], r["width"], r["depth"], r["land_fraction"],
                          r.get("mu"), r.get("h_center"), r.get("contact_share"),
-                         bool(r["converged"]), bool(r["converged"] and r["mu"] >= mu_min),
-                         r.get("solver_message") or "") for r in rows]
+                         bool(r["converged"]),
+                         bool(r["converged"] and r["mu"] >= mu_min and not r.get("flag")),
+                         r.get("solver_message") or "", h_min=r.get("h_min"),
+                         error_h_center=r.get("error_h_center"),
+                         error_h_min=r.get("error_h_min"), error_mu=r.get("error_mu"),
+                         error_contact_share=r.get("error_contact_share"),
+                         warnings=tuple(w for w in (r.get("warnings") or "").split(" | ")
+                                        if w),
+                         flag=r.get("flag") or "") for r in rows]
 
 
 def _design_row(case: Case, opts, designs, n: int) -> dict:
@@ -251,8 +277,18 @@ def _design_row(case: Case, opts, designs, n: int) -> dict:
             r = solve(c, model="fe2d", options=opts)
     except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
         return {**out, "solver_message": " ".join(str(err).split())}
+    said = tuple(r.get("warnings") or ())
+    h_min = r.get("h_min")
+    # the sag warning is the solve's own (same case, same h_min): a design whose film the
+    # model does not compute is flagged, whatever its mu
+    sag = sag_warning(c, h_min) if h_min is not None else ""
     return {**out, "mu": r["mu"], "h_center": r["h_center"],
-            "contact_share": r["contact_share"], "converged": True}
+            "contact_share": r["contact_share"], "converged": True, "h_min": h_min,
+            **{k: r.get(k) for k in ("error_h_center", "error_h_min", "error_mu",
+                                     "error_contact_share")},
+            # " | " between warnings: they hold "; " themselves
+            "warnings": " | ".join(" ".join(w.split()) for w in said),
+            "flag": SAG_FLAG if sag and sag in said else ""}
 
 
 def best_designs(designs: Sequence[GrooveDesign]) -> dict[float, GrooveDesign | None]:

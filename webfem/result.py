@@ -49,7 +49,8 @@ import numpy as np
 from .case import Case
 from .summary import SUMMARY_KEYS, ReadOnlyMapping, Summary
 
-__all__ = ["Result", "Summary", "Fields", "Film", "Diagnostics", "State", "SUMMARY_KEYS"]
+__all__ = ["Result", "Summary", "Fields", "Film", "Diagnostics", "State", "SUMMARY_KEYS",
+           "refused"]
 
 
 @dataclass(frozen=True, repr=False)
@@ -261,3 +262,28 @@ def _cell(value: Any) -> str:
     if isinstance(value, list):
         return "; ".join(map(str, value)) or "-"
     return str(value)
+
+
+def refused(case: Case, model: str, message: str) -> Result:
+    """The result kept for a point ``model`` refuses to answer (outside its domain, no
+    admissible solution): ``converged`` False, the reason in ``solver_message`` and
+    ``warnings``, every computed number NaN (null in JSON), only the case's own groups
+    (lambda, beta, ...) filled. Many-point calls (:func:`webfem.api.solve_many`, sweeps) keep
+    it in place so one refused point does not lose the others' answers.
+
+    >>> r = refused(Case(), "fitted", "outside the domain")
+    >>> r["converged"], r["solver_message"], r.to_dict()["mu"]
+    (False, 'outside the domain', None)
+    """
+    nan = float("nan")
+    message = " ".join(str(message).split())
+    summary = Summary(
+        model=model, h_center=nan, h_inlet=nan, h_outlet=nan, h_min=nan, mu=nan, delta_T=nan,
+        regime="none", lambda_=case.lam, beta=case.beta,
+        eq21_valid=bool(case.beta > 6 and case.lam > 7), converged=False, iterations=0,
+        n_dofs=0, solve_time_s=0.0, h_c=nan, sigma=case.sigma, share_boundary=nan,
+        share_mixed=nan, share_fluid=nan, eps=case.eps, kappa=case.kappa, U=case.U,
+        U_slide=case.U_slide, residual=nan, warnings=(message,), T_eff=case.tension_eff,
+        solver_message=message)
+    empty = np.empty(0)
+    return Result(case, summary, Fields(x=empty, h=empty), Diagnostics(reason=message))

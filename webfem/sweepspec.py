@@ -33,7 +33,8 @@ import numpy as np
 
 from .case import Case, case_from_tables, read_toml
 from .errors import InputError, show
-from .keys import flatten, is_key, is_numeric, unknown_key, valid_keys
+from .keys import flatten, is_key, is_numeric, key_meta, unknown_key, valid_keys
+from .units import examples, to_si
 
 __all__ = ["MAX_POINTS", "MAX_SERIES", "MAX_VALUES", "Sweep", "load_sweep"]
 
@@ -59,10 +60,22 @@ def _count(name: str, value: Any, where: str = "") -> int:
     return int(value)
 
 
-def _finite(name: str, value: Any, where: str = "") -> float:
+def _finite(name: str, value: Any, where: str = "", key: str | None = None) -> float:
+    """A finite number; with the swept ``key``, text with a unit ("600 m/min") is converted
+    to the key's SI unit, as a case file's keys are."""
+    if isinstance(value, str) and key is not None:
+        unit = key_meta(key)["unit"]
+        try:
+            value = to_si(key, value, unit)
+        except InputError as err:
+            raise InputError(f"{name} = {show(value)}{where} is not a value of the swept "
+                             f"{key} (a number in {unit}, or text with a unit): {err}") \
+                from None
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        unit = f" in {key_meta(key)['unit']} or text with a unit such as " \
+               f"'{examples(key, key_meta(key)['unit'])[0]}'" if key is not None else ""
         raise InputError(f"{name} = {show(value)}{where} is not a number: "
-                         "must be a finite number")
+                         f"must be a finite number{unit}")
     try:
         x = float(value)
     except OverflowError:
@@ -85,7 +98,7 @@ def _check_parameter(parameter: Any, where: str = "") -> None:
                          + ", ".join(k for k in valid_keys() if is_numeric(k)))
 
 
-def _check_values(values: Any) -> tuple[float, ...]:
+def _check_values(values: Any, key: str | None = None) -> tuple[float, ...]:
     if isinstance(values, np.ndarray) and values.ndim == 1:
         values = values.tolist()
     if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
@@ -96,7 +109,7 @@ def _check_values(values: Any) -> tuple[float, ...]:
                          f"must hold 1 to {MAX_VALUES}")
     out, seen = [], set()
     for i, v in enumerate(values):
-        x = _finite(f"sweep.values item {i + 1}", v, f" (of {show(values)})")
+        x = _finite(f"sweep.values item {i + 1}", v, f" (of {show(values)})", key)
         if x in seen:
             raise InputError(f"sweep.values holds {x:g} twice: each value may appear once "
                              "(results are keyed by series and value)")
@@ -153,7 +166,8 @@ class Sweep:
 
     def __post_init__(self):
         _check_parameter(self.parameter)
-        values, series = _check_values(self.values), _check_series(self.series)
+        values = _check_values(self.values, self.parameter)
+        series = _check_series(self.series)
         if len(values) * len(series) > MAX_POINTS:
             raise InputError(f"the sweep has {len(values)} values x {len(series)} series = "
                              f"{len(values) * len(series)} points: at most {MAX_POINTS}")
@@ -199,7 +213,7 @@ class Sweep:
         return dataclasses.replace(self, values=tuple(space(lo, hi, num).tolist()))
 
 
-def _values_from_spec(spec: Mapping[str, Any], where: str) -> Any:
+def _values_from_spec(spec: Mapping[str, Any], where: str, parameter: str) -> Any:
     """The values a ``[sweep]`` table asks for (a list, checked by Sweep, or a range)."""
     if "values" in spec:
         extra = [k for k in ("start", "stop", "num", "spacing") if k in spec]
@@ -209,8 +223,8 @@ def _values_from_spec(spec: Mapping[str, Any], where: str) -> Any:
         return spec["values"]
     if "start" not in spec or "stop" not in spec:
         raise InputError(f"[sweep]{where} needs 'values' or 'start' and 'stop'")
-    start = _finite("sweep.start", spec["start"], where)
-    stop = _finite("sweep.stop", spec["stop"], where)
+    start = _finite("sweep.start", spec["start"], where, parameter)
+    stop = _finite("sweep.stop", spec["stop"], where, parameter)
     num = _count("sweep.num", spec.get("num", _DEFAULT_NUM), where)
     spacing = spec.get("spacing", "linear")
     if spacing not in ("linear", "log"):
@@ -271,7 +285,7 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
                          f"the swept parameter{where}, set at every point; change [sweep] "
                          "instead")
     if "sweep" in data:
-        values = _values_from_spec(spec, where)
+        values = _values_from_spec(spec, where, parameter)
     else:  # default: the paper's speed range
         values = np.linspace(0.5, 40.0, 60).tolist()
     series = _series_from_tables(case, data.get("series", []), parameter, where)

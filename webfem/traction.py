@@ -26,6 +26,7 @@ import numpy as np
 from .api import solve_along
 from .case import Case
 from .errors import InputError
+from .keys import key_meta
 from .loss_scan import refine, scan
 from .models.options import Options
 from .models.registry import make_options, model_spec
@@ -159,6 +160,10 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     if not (math.isfinite(hi) and 0.0 <= lo < hi):
         raise InputError(f"speed range = {speed_range!r} is not valid: need 0 <= low < high "
                          "(finite) [m/s]")
+    top = key_meta("roller.speed")["hi"]
+    if hi > top:   # refused here, not at the first scanned speed above it
+        raise InputError(f"speed range = {speed_range!r} is out of range: the high end must "
+                         f"be <= {top:g} m/s, the roller speeds a case allows (roller.speed)")
     if isinstance(n_scan, bool) or not isinstance(n_scan, int) or not 3 <= n_scan <= 10_000:
         raise InputError(f"n_scan = {n_scan!r} is out of range: must be an integer from 3 "
                          "to 10000")

@@ -25,8 +25,8 @@ import tempfile
 import textwrap
 from pathlib import Path
 
-from ..bundled import bundled_cases, locate_case
-from ..case import Case, load_case, parse_assignment
+from ..bundled import bundled_cases, load_case, locate_case
+from ..case import Case, parse_assignment
 from ..cores import usable_cores
 from ..errors import InputError
 from ..models.options import Options
@@ -145,15 +145,36 @@ def add_quiet_argument(parser: argparse.ArgumentParser) -> None:
                         help="no progress display (none either when stderr is not a terminal)")
 
 
+class Given(float):
+    """A number read from the command line that keeps the text it was given as, so a
+    later range check names what the user typed (``'1000 m/min'``), not only its SI value."""
+
+    text: str
+
+    def __new__(cls, value: float, text: str):
+        out = super().__new__(cls, value)
+        out.text = text
+        return out
+
+    def shown(self, unit: str) -> str:
+        """``'1000 m/min' (16.67 m/s)``, or ``300 m/s`` where the text was a bare number."""
+        try:
+            float(self.text)
+        except ValueError:
+            return f"{self.text!r} ({float(self):.4g} {unit})"
+        return f"{self.text} {unit}"
+
+
 def speed_value(text: str) -> float:
-    """An argparse type: a speed in m/s, or with a unit (``"1200 m/min"``)."""
+    """An argparse type: a speed in m/s, or with a unit (``"1200 m/min"``); a :class:`Given`
+    (the text kept for messages)."""
     try:
-        return float(text)
+        return Given(float(text), text)
     except ValueError:
         pass
     from ..units import to_si
     try:
-        return to_si("speed", text, "m/s")
+        return Given(to_si("speed", text, "m/s"), text)
     except InputError as err:
         raise argparse.ArgumentTypeError(str(err).removeprefix("speed = ")) from None
 

@@ -9,11 +9,12 @@ import textwrap
 from pathlib import Path
 
 from ..errors import InputError
+from ..keys import key_meta
 from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITCHES,
                              DEFAULT_SPEED_FACTORS, LOSS_LAND_FRACTIONS, LOSS_PITCHES,
                              LOSS_SCAN, LOSS_SPEED_RANGE, best_designs, check_arguments,
                              groove_map, loss_speed_map)
-from ..units import convert, display, unit_label
+from ..units import convert, display, to_si, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
                      add_units_argument, case_from, local_workers, model_options,
                      output_folder, positive_int, print_json, speed_value)
@@ -27,14 +28,49 @@ def _workers(asked: int | None) -> int:
     return local_workers(asked, DEFAULT_WORKERS)
 
 
-def _floats(text: str) -> list[float]:
-    try:
-        values = [float(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise InputError(f"'{text}' is not a comma-separated list of numbers") from None
+#: The case key whose unit a list of lengths is read in (None: plain fractions).
+_LIST_KEYS = {"pitches": "roller.groove_pitch", "loss_pitches": "roller.groove_pitch",
+              "depths": "roller.groove_depth", "lands": None, "loss_lands": None}
+
+
+def _floats(name: str, text: str) -> list[float]:
+    """The values of list option ``--NAME``: lengths in metres or with a unit ("1.27 mm"),
+    > 0; land fractions as numbers > 0 and < 1. A bad item is an error naming the flag, the
+    text, the item, the unit and the valid range."""
+    flag, key = "--" + name.replace("_", "-"), _LIST_KEYS[name]
+    hi = key_meta(key)["hi"] if key else 1.0
+    what = (f"lengths > 0 and <= {hi:g} m (the case key {key}'s range), in m or with a unit, "
+            "comma-separated (e.g. 0.00127,2.5 mm)" if key else
+            "land fractions a/pitch > 0 and < 1, comma-separated (e.g. 0.5,0.8)")
+    values = []
+    for item in (t.strip() for t in text.split(",")):
+        if not item:
+            continue
+        try:
+            value = float(item)
+        except ValueError:
+            if key is None:
+                raise InputError(f"{flag} = {text!r}: {item!r} is not a number; give "
+                                 f"{what}") from None
+            try:
+                value = to_si(key, item, "m")
+            except InputError as err:
+                why = str(err).split(" = ", 1)[-1]
+                raise InputError(f"{flag} = {text!r}: {why}; give {what}") from None
+        if not (0.0 < value < 1.0 if key is None else 0.0 < value <= hi):
+            shown = item if value == _number(item) else f"{item} = {value:g} m"
+            raise InputError(f"{flag} = {text!r}: {shown} is out of range; give {what}")
+        values.append(value)
     if not values:
-        raise InputError(f"'{text}': give at least one number")
+        raise InputError(f"{flag} = {text!r}: give at least one value: {what}")
     return values
+
+
+def _number(text: str) -> float | None:
+    try:
+        return float(text)
+    except ValueError:
+        return None
 
 
 def _listed(values) -> str:
@@ -75,13 +111,15 @@ def add_parser(subparsers) -> None:
                         + " and ".join(f"{20 * f:g}" for f in DEFAULT_SPEED_FACTORS)
                         + " m/s on the base case)")
     p.add_argument("--pitches", default=_listed(DEFAULT_PITCHES),
-                   help=f"groove pitches [m], comma-separated (default "
+                   help=f"groove pitches [m, or with a unit: '1.27 mm'], comma-separated "
+                        f"(default "
                         f"{_listed(DEFAULT_PITCHES)})")
     p.add_argument("--lands", default=_listed(DEFAULT_LAND_FRACTIONS),
                    help=f"land fractions a/pitch, comma-separated (default "
                         f"{_listed(DEFAULT_LAND_FRACTIONS)})")
     p.add_argument("--depths", default=f"{DEFAULT_DEPTH:g}",
-                   help=f"groove depths [m], comma-separated (default {DEFAULT_DEPTH:g})")
+                   help=f"groove depths [m, or with a unit], comma-separated (default "
+                        f"{DEFAULT_DEPTH:g})")
     p.add_argument("--loss-speed", action="store_true",
                    help="also chart the traction-loss speed against groove geometry")
     p.add_argument("--loss-pitches", default=_listed(LOSS_PITCHES),
@@ -117,20 +155,25 @@ def _print_map(designs, best, mu_min: float, units: str = "si") -> None:
         return convert(value, "position", units)
 
     for speed, b in best.items():
+        here = [d for d in designs if d.speed == speed]
+        flagged = [d for d in here if d.flag and d.converged and d.mu >= mu_min]
         print(f"roller speed {display(speed, 'speed', units)}"
               + (f" ({60 * speed:.0f} m/min)" if units == "si" else "")
-              + f", mu_min {mu_min:g} (* feasible):")
+              + f", mu_min {mu_min:g} (* feasible"
+              + (", ! mu >= mu_min but flagged" if flagged else "") + "):")
         print(f"  pitch {size:2}  groove {size:2}  depth {size:2}  land %      mu   "
-              f"h_center {thin:2}  contact share")
-        for d in designs:
-            if d.speed != speed:
-                continue
+              f"h_center {thin:2}  h_min {thin:2}  contact share")
+        for d in here:
             mu = f"{d.mu:7.4f}" if d.converged else f"  no answer: {_short(d.message)}"
             hc = f"{convert(d.h_center, 'thin', units):11.3g}" if d.converged else ""
-            cs = f"{d.contact_share:14.3f}" if d.converged else ""
-            mark = "*" if d.feasible else " "
+            hm = f"{convert(d.h_min, 'thin', units):9.3g}" if d.h_min is not None else ""
+            cs = f"{d.contact_share:15.3f}" if d.converged else ""
+            mark = "*" if d.feasible else "!" if d in flagged else " "
             print(f"{mark} {g(d.pitch):8.3g}  {g(d.width):9.3g}  {g(d.depth):8.3g}  "
-                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{cs}")
+                  f"{100 * d.land_fraction:6.1f}  {mu}  {hc}{hm}{cs}")
+        for d in flagged:
+            print(f"  ! {g(d.pitch):.3g} {size} / {g(d.width):.3g} {size} groove: {d.flag} "
+                  f"(its warning in the CSV and --json): not counted as feasible")
         if b is None:
             print("  no design keeps mu >= mu_min: finer pitches or narrower lands")
         else:
@@ -170,8 +213,7 @@ def run(args) -> int:
     case = case_from(args)
     args.model = "fe2d"
     options = model_options(args)
-    lists = {name: _floats(getattr(args, name)) for name in
-             ("pitches", "lands", "depths", "loss_pitches", "loss_lands")}
+    lists = {name: _floats(name, getattr(args, name)) for name in _LIST_KEYS}
     check_arguments(args.mu_min, speeds=args.speed or (), pitches=lists["pitches"]
                     + lists["loss_pitches"], land_fractions=lists["lands"] + lists["loss_lands"],
                     depths=lists["depths"])

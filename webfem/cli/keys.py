@@ -51,8 +51,9 @@ def _sweep_lines() -> list[str]:
         row.format("parameter", "the swept numeric case key, e.g. \"roller.speed\" (the "
                                 "default) or \"web.tension\""),
         row.format("values", f"the swept values, e.g. [1.0, 2.5, 5.0]: 1 to {MAX_VALUES} "
-                             "distinct finite numbers; or instead:"),
-        row.format("start, stop", "the ends of an evenly spaced range"),
+                             "distinct finite numbers, SI or text with a unit of the "
+                             "swept key (\"600 m/min\"); or instead:"),
+        row.format("start, stop", "the ends of an evenly spaced range (SI or with a unit)"),
         row.format("num", f"number of values in the range (an integer, 1 to {MAX_VALUES})"),
         row.format("spacing", "one of linear, log (log needs start and stop > 0)"),
         f"[[series]]          (repeatable, at most {MAX_SERIES}; at most {MAX_POINTS} points "

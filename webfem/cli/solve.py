@@ -13,7 +13,7 @@ from .common import (DEFAULT_MODEL, HELP_FORMATTER, Ticker, add_case_arguments,
 from .summary import summary_text
 
 #: Models whose results never carry a 2-D film (``--plot`` is refused before solving).
-NO_FILM = ("closed-form", "fe1d")
+NO_FILM = ("closed-form", "fe1d", "fitted")
 
 
 def add_parser(subparsers) -> None:
@@ -24,7 +24,8 @@ def add_parser(subparsers) -> None:
                    help="write VTU files of the web (and film, fe2d) into DIR for ParaView")
     p.add_argument("--plot", action="store_true",
                    help="draw the film (pressure, gap, friction; fe2d) as a PNG in --units, "
-                        "into the --vtu DIR (or the current folder)")
+                        "into the --vtu DIR (or the current folder); where auto answers with "
+                        "a model without a 2-D film, its gap and friction along the wrap")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys: model, h_center, h_inlet, h_outlet, h_min, "
                         "mu, delta_T, regime, lambda, beta, eq21_valid, converged, iterations, "
@@ -67,11 +68,12 @@ def run(args) -> int:
     for path in _write_vtu(result, vtu, stem) if vtu else []:
         print(f"wrote {path}", file=sys.stderr)
     if pictures:
-        if result.film is None:   # auto chose a model without a film
-            raise InputError(f"--plot: model {args.model} answered with "
-                             f"{result.get('model_used', args.model)}, which has no 2-D film "
-                             "to draw: use --model fe2d")
         from ..io.pictures import film_pictures
+        # auto may answer with a model without a 2-D film, known only now: draw what it
+        # has (gap and friction along the wrap) rather than fail after writing the rest
+        note = "" if result.film is not None else (
+            f" ({result.get('model_used', args.model)} answered: no 2-D film, the gap and "
+            "friction along the wrap only; --model fe2d draws the film)")
         for path in film_pictures(result, pictures, stem, units=args.units):
-            print(f"wrote {path}", file=sys.stderr)
+            print(f"wrote {path}{note}", file=sys.stderr)
     return 0

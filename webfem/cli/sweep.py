@@ -7,7 +7,7 @@ import sys
 import textwrap
 from pathlib import Path
 
-from ..sweepspec import load_sweep
+from ..bundled import load_sweep
 from ..errors import InputError
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments, announce_case,
                      add_dask_argument, add_quiet_argument, add_units_argument, model_options,

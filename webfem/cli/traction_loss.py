@@ -10,6 +10,8 @@ import numpy as np
 
 from ..traction import (CHART_PARAMETERS, CHART_POINTS, SPEED_RANGE, mu_curve,
                         traction_loss_speed, traction_loss_table)
+from ..errors import InputError
+from ..keys import key_meta
 from ..units import display
 from .summary import in_units
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, Ticker, add_case_arguments,
@@ -57,11 +59,28 @@ def add_parser(subparsers) -> None:
     add_quiet_argument(p)
 
 
+def _speed_range(low, high) -> tuple[float, float]:
+    """``(--min-speed, --max-speed)``, checked against the roller speeds a case allows
+    before anything is solved: an error names the flag and the text given."""
+    top = key_meta("roller.speed")["hi"]
+
+    def said(value) -> str:
+        return value.shown("m/s") if hasattr(value, "shown") else f"{value:g} m/s"
+
+    if not 0.0 < high <= top:
+        raise InputError(f"--max-speed = {said(high)} is out of range: must be > 0 and <= "
+                         f"{top:g} m/s (the roller speeds a case allows, roller.speed)")
+    if not 0.0 <= low < high:
+        raise InputError(f"--min-speed = {said(low)} is out of range: must be >= 0 and below "
+                         f"--max-speed = {said(high)}")
+    return float(low), float(high)
+
+
 def run(args) -> int:
     case = case_from(args)
     options = model_options(args)
     chart_dir = output_folder(args.chart, "--chart") if args.chart else None
-    speed_range = (args.min_speed, args.max_speed)
+    speed_range = _speed_range(args.min_speed, args.max_speed)
     workers = local_workers(args.workers, DEFAULT_WORKERS)
     with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
         out = traction_loss_speed(case, args.mu_min, model=args.model,

@@ -456,9 +456,8 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                                             + " (as large as a random residual's of that size)")
             if alpha < min_damping:
                 return NewtonResult(u, False, it, norm, history,
-                                    f"the residual stalls at {norm:.3g}, above the tolerance "
-                                    f"{tol:.3g} and {FLOOR_FACTOR:g} x its rounding floor "
-                                    f"{floor:.3g}" if tiny else "line search failed")
+                                    _stalls(norm, tol, floor) if tiny
+                                    else "line search failed")
         u, r, norm = trial, r_trial, n_trial
         history.append(norm)
         report("newton", it, norm, tol)
@@ -477,10 +476,7 @@ def newton(F: Callable[[np.ndarray], np.ndarray], J: Callable[[np.ndarray], sp.s
                 return NewtonResult(u, True, it, norm, history, _at_floor(norm, tol, floor))
             # the iterate no longer moves but the residual stays above the tolerance and
             # the rounding floor: never an answer
-            return NewtonResult(u, False, it, norm, history,
-                                f"the residual stalls at {norm:.3g}, above the tolerance "
-                                f"{tol:.3g} and {FLOOR_FACTOR:g} x its rounding floor "
-                                f"{floor:.3g}")
+            return NewtonResult(u, False, it, norm, history, _stalls(norm, tol, floor))
     return NewtonResult(u, norm <= tol, it, norm, history, "iteration limit")
 
 
@@ -497,6 +493,19 @@ def noise_correction(solve, norm: float, n: int) -> float:
     iterate by."""
     z = np.random.default_rng(0).standard_normal((NOISE_SAMPLES, n))
     return max(float(np.max(np.abs(solve(norm * v / norm2(v))))) for v in z)
+
+
+def _stalls(norm, tol, floor) -> str:
+    """Why a residual that no longer moves is no answer. A tolerance below
+    :data:`STRICT_BELOW` is taken strictly: the rounding floor is then not computed (0), and
+    the reason says so rather than state a floor of 0."""
+    if tol < STRICT_BELOW or floor <= 0.0:
+        return (f"the residual stalls at {norm:.3g}, above the tolerance {tol:.3g} (a "
+                f"tolerance below {STRICT_BELOW:g} is taken strictly: a residual at its "
+                f"rounding floor is not accepted, and the floor is not computed; a tolerance "
+                f">= {STRICT_BELOW:g} accepts one within {FLOOR_FACTOR:g} x that floor)")
+    return (f"the residual stalls at {norm:.3g}, above the tolerance {tol:.3g} and "
+            f"{FLOOR_FACTOR:g} x its rounding floor {floor:.3g}")
 
 
 def _at_floor(norm, tol, floor) -> str:

@@ -30,11 +30,12 @@ import dataclasses
 import datetime
 import math
 import platform
+import re
 import tempfile
 from html import escape
 from pathlib import Path
 
-from ..describe import error_text, judged_text
+from ..describe import contact_gap_text, error_text, judged_text, resting_text
 from ..files import write_text
 from ..units import ROLES, convert, unit_label
 
@@ -47,7 +48,7 @@ SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
 #: Summary key -> (unit, meaning) for the summary table in SI (gaps in um, x_min in mm); in
 #: other units a key of :data:`webfem.units.ROLES` shows its display unit.
 SUMMARY_UNITS = {
-    "mu": ("-", "wrap-averaged friction coefficient (nothing sliding: at the onset of slip)"),
+    "mu": ("-", "wrap-averaged friction coefficient"),
     "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
     "mu_film": ("-", "nothing sliding: the film's own drag at these speeds"),
     "delta_T_film": ("N/m", "nothing sliding: the belt formula's delta_T for mu_film"),
@@ -184,9 +185,33 @@ def _summary(result, units: str = "si") -> str:
         value = data.get(key)
         if value is None:
             continue
+        if key == "mu":
+            meaning = f"{meaning} {_mu_when(data, units)}"
+        elif key == "h_min" and resting_text(data):
+            meaning = f"{meaning}; {_in_units(resting_text(data), units)}"
+        elif key == "h_c":
+            meaning += _in_units(contact_gap_text(data), units)
         value, unit = _shown(key, value, unit, units)
         rows.append((key, _num(value), unit, meaning))
     return _table(("quantity", "value", "unit", "meaning"), rows)
+
+
+def _mu_when(s, units: str) -> str:
+    """When the case's mu applies: at the onset of slip where nothing slides (U_s = 0), else
+    at the stated speeds, the web sliding U_s over the roller."""
+    if not s.get("U_slide"):
+        return "(nothing sliding: at the onset of slip)"
+    speed = f"{convert(abs(s.U_slide), 'speed', units):.4g} {unit_label('speed', units)}"
+    return f"(at the stated speeds: the web slides {speed} over the roller, U_s = |U_r - U_w|)"
+
+
+def _in_units(text: str, units: str) -> str:
+    """``text``'s thin lengths (``2.25 um``) in ``units``."""
+    if units == "si" or not text:
+        return text
+    return re.sub(r"([-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?) um",
+                  lambda m: f"{convert(float(m.group(1)) * 1e-6, 'thin', units):.3g} "
+                            f"{unit_label('thin', units)}", text)
 
 
 def _picture(path: Path, caption: str) -> str:
@@ -221,14 +246,19 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
     s = result.summary
     used = s.model_used or s.model
     title = title or "webfem report"
-    warn = "".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings) \
-        or '<p class="ok">No warnings.</p>'
+    rests = _in_units(resting_text(s) or "", units)
+    # a negative gap is an answer, not a warning, but the page must say why it is negative
+    # wherever a reader meets it: the heading, the summary table and this section
+    note = f"<p>Note: {escape(rests[0].upper() + rests[1:])}.</p>" if rests else ""
+    warn = note + ("".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings)
+                   or '<p class="ok">No warnings.</p>')
     figures = "\n".join(_picture(p, c) for p, c in pictures) or "<p>No pictures.</p>"
     body = {"inputs": _inputs(result.case, units), "model": _model(result, asked),
             "summary": _summary(result, units), "pictures": figures, "warnings": warn,
             "computed": _computed(result, version)}
     head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)}, smallest gap "
-            f"{convert(s.h_min, 'thin', units):.3g} {unit_label('thin', units)}; model "
+            f"{convert(s.h_min, 'thin', units):.3g} {unit_label('thin', units)}"
+            f"{f' ({escape(rests)})' if rests else ''}; model "
             f"{escape(used)}"
             f"{'' if s.converged else ' (NOT converged)'}</p>")
     nav = "<nav>" + "".join(f'<a href="#{k}">{v}</a>' for k, v in SECTIONS.items()) + "</nav>"

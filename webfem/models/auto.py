@@ -32,7 +32,7 @@ from __future__ import annotations
 import dataclasses
 
 from ..case import Case
-from ..errors import NoAdmissibleSolution
+from ..errors import ConvergenceError, NoAdmissibleSolution
 from ..physics.validity import BETA_MAX
 from ..result import Result
 from . import closed, fe1d, fe2d, fitted
@@ -79,9 +79,9 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
         if options.edge_tol is None:
             # the periodic cell answers where the web's edges change it by at most tol
             fe2d_options = fe2d_options.replace(edge_tol=tol)
-        r = fe2d.solve_case(case, fe2d_options, raise_on_failure=raise_on_failure)
-        return _answer(r, quantities, tol,
-                       ["grooved roller: only fe2d solves the land and groove film"])
+        why = ["grooved roller: only fe2d solves the land and groove film"]
+        return _answer(_fe2d(case, fe2d_options, raise_on_failure, quantities, tol, why),
+                       quantities, tol, why)
     why = []
     if case.beta > BETA_MAX:   # beyond the FE meshes: the web rests on its asperities
         r = _closed(case)
@@ -111,9 +111,23 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
             return _answer(r, quantities, tol, why)
     else:
         why.append(f"fe1d: did not converge ({r.summary.solver_message})")
-    r = fe2d.solve_case(case, fe2d_options, raise_on_failure=raise_on_failure)
+    r = _fe2d(case, fe2d_options, raise_on_failure, quantities, tol, why)
     _, text = _verdict("fe2d", stated_errors(r), quantities, tol)
     return _answer(r, quantities, tol, why + [text + " (the reference: its mesh error)"])
+
+
+def _fe2d(case: Case, options: FE2DOptions, raise_on_failure: bool, quantities, tol,
+          why) -> Result:
+    """fe2d's result; where it does not converge, the error's last iterate says, as an
+    answer would, that auto used fe2d and why (``model_used``, ``why``), and that it failed."""
+    try:
+        return fe2d.solve_case(case, options, raise_on_failure=raise_on_failure)
+    except ConvergenceError as err:
+        if err.result is not None:
+            err.result = _answer(err.result, quantities, tol,
+                                 [*why, f"fe2d: did not converge "
+                                        f"({err.result.summary.solver_message})"])
+        raise
 
 
 def _closed(case: Case) -> Result:

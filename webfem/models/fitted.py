@@ -41,9 +41,10 @@ from ..errors import NoAdmissibleSolution
 from ..physics.contact import REGIMES, contact_gap, contact_pressure
 from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
-from ..result import Diagnostics, Fields, Result
+from ..result import Diagnostics, Fields, Result, refused
 from ..summary import Summary
 from . import fit_groups as fg
+from .fit_file import read_fit
 from .fit_kernel import ONE_THREAD_FROM, STACKED, Kernel, Stack, blas_one_thread
 from .options import FittedOptions
 
@@ -65,25 +66,27 @@ class OutsideDomain(NoAdmissibleSolution):
 @lru_cache(maxsize=4)
 def coefficients(path: str | None = None) -> dict:
     """The shipped fit (or the one at ``path``): the kernel, the box, the stated-error
-    table and what it was trained on."""
+    table and what it was trained on.
+
+    Raises
+    ------
+    webfem.errors.InputError
+        ``path`` holds no fit (:func:`webfem.models.fit_file.read_fit` says what is
+        wrong); :class:`~webfem.models.options.FittedOptions` reads it when the option is
+        set, so every command refuses it before solving.
+    """
     p = Path(path) if path else COEFFICIENTS
-    if not p.is_file():
+    if not p.is_file() and not path:
         raise NoAdmissibleSolution(f"the fitted model's coefficients {p} are missing: build "
                                    "them with `webfem fit build`")
-    with np.load(p, allow_pickle=False) as data:
-        d = {k: data[k] for k in data.files}
-    names = tuple(str(n) for n in d.get("scalar_names", ()))
-    scalars, j = [], 0
-    while f"s{j}_centres" in d:
-        scalars.append(Kernel.from_arrays(d, f"s{j}"))
-        j += 1
-    kernel = Kernel.from_arrays(d, "k")
-    return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"], "hi": d["hi"],
-            "edges": d["region_edges"], "errors": d["region_errors"],
+    fit = read_fit(str(p))
+    d, kernel, scalars = fit["arrays"], fit["kernel"], fit["scalars"]
+    return {"kernel": kernel, "stack": evaluator(kernel, scalars), "lo": d["lo"],
+            "hi": d["hi"], "edges": d["region_edges"], "errors": d["region_errors"],
             # a file from before the Dn bands states one error per gap region
             "dn_edges": d.get("dn_edges", np.empty(0)),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
-            "scalar_names": names}
+            "scalar_names": fit["scalar_names"]}
 
 
 #: The type the kernels' radial function and weight products are evaluated in
@@ -418,22 +421,20 @@ def onset_error(mu, mu_cc, share_error):
     return A / np.maximum(np.abs(np.asarray(mu, float)) - A, MU_SCALE * np.asarray(mu_cc, float))
 
 
-def _checked_columns(cases: list[Case], many: bool) -> tuple[dict, np.ndarray]:
-    """The columns and groups of ``cases``, or :class:`OutsideDomain` naming the first case
-    outside the domain (its number when ``many``), the group and its range."""
-    def refuse(i, why):
-        raise OutsideDomain((f"case {i}: " if many else "") + f"no fitted answer: {why}")
-    for i, c in enumerate(cases):
-        why = fg.physics_refusal(c)
-        if why:
-            refuse(i, why)
+def _checked_columns(cases: list[Case], many: bool) -> tuple[dict, np.ndarray, dict]:
+    """The columns and groups of ``cases`` and why each case outside the domain has no
+    answer (``{index: message}``: its physics switches, or the first group outside and its
+    range). A single case (``many`` False) outside raises :class:`OutsideDomain`."""
+    refusals = {i: why for i, c in enumerate(cases) if (why := fg.physics_refusal(c))}
     v = fg.case_columns(cases)
     G = fg.groups_of_columns(v)
     bad = fg.outside_rows(G)
-    if (bad >= 0).any():
-        i = int(np.argmax(bad >= 0))
-        refuse(i, fg.outside_text(int(bad[i]), G[i, bad[i]]))
-    return v, G
+    for i in np.flatnonzero(bad >= 0):
+        refusals.setdefault(int(i), fg.outside_text(int(bad[i]), G[i, bad[i]]))
+    refusals = {i: f"no fitted answer: {why}" for i, why in sorted(refusals.items())}
+    if refusals and not many:
+        raise OutsideDomain(next(iter(refusals.values())))
+    return v, G, refusals
 
 
 def _timed(results: list[Result], seconds: float) -> list[Result]:
@@ -451,7 +452,7 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
     (``raise_on_failure`` is accepted for the registry's common signature; a refusal is
     never returned as an answer)."""
     t0 = time.perf_counter()
-    v, G = _checked_columns([case], many=False)
+    v, G, _ = _checked_columns([case], many=False)
     fit = coefficients(options.coefficients)
     res = _results([case], v, predict(G, fit), fit, options)
     return _timed(res, time.perf_counter() - t0)[0]
@@ -472,14 +473,21 @@ def solve(case: Case, options: FittedOptions | None = None, **values) -> Result:
 def solve_many(cases, options: FittedOptions | None = None) -> list[Result]:
     """Many cases in one vectorised evaluation: the fit, the friction read-out and the
     traction on arrays, then one result per case, each the same as :func:`solve_case`'s
-    (``solve_time_s``: the batch's time per case). A case outside the domain is an
-    :class:`OutsideDomain` error naming it."""
+    (``solve_time_s``: the batch's time per case). A case outside the domain is kept in
+    its place, not answered (:func:`webfem.result.refused`: ``converged`` False, why in
+    ``solver_message`` and ``warnings``), as every model's many-point call keeps it."""
     cases = list(cases)
     if not cases:
         return []
     options = options or FittedOptions()
     t0 = time.perf_counter()
-    v, G = _checked_columns(cases, many=True)
+    v, G, refusals = _checked_columns(cases, many=True)
     fit = coefficients(options.coefficients)
-    res = _results(cases, v, predict(G, fit), fit, options)
+    keep = [i for i in range(len(cases)) if i not in refusals]
+    if refusals and keep:
+        v, G = {k: a[keep] for k, a in v.items()}, G[keep]
+    answers = iter(_results([cases[i] for i in keep], v, predict(G, fit), fit, options)
+                   if keep else [])
+    res = [refused(c, NAME, refusals[i]) if i in refusals else next(answers)
+           for i, c in enumerate(cases)]
     return _timed(res, (time.perf_counter() - t0) / len(cases))

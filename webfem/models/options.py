@@ -217,6 +217,25 @@ class FittedOptions(Options):
     coefficients: str | None = option(None, "coefficients file of the fit (none: the one "
                                       "shipped in the package)", "path", none=True)
 
+    @classmethod
+    def what_is_valid(cls, meta: Mapping[str, Any]) -> str:
+        if meta["kind"] == "path":
+            return ("a coefficients file of the fit (a NumPy .npz archive written by `webfem "
+                    "fit build`), or none")
+        return super().what_is_valid(meta)
+
+    @classmethod
+    def check(cls, name: str, value: Any, meta: Mapping[str, Any]) -> Any:
+        """The coefficients file is loaded here, once (cached for the solves), so a file
+        holding no fit is refused before any command solves or writes."""
+        if meta["kind"] != "path" or value is None:
+            return super().check(name, value, meta)
+        if not isinstance(value, (str, Path)):
+            raise cls.invalid(name, value, "is not valid", meta)
+        from .fit_file import read_fit   # numpy's zip reader only when the option is set
+        read_fit(str(value))
+        return str(value)
+
 
 _METHODS_1D = ("newton", "picard", "picard-staggered")
 

@@ -52,6 +52,11 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
     slip = slip_warning(case, ro.h_min)
     if slip:
         warnings.append(slip)
+    if not info.converged:
+        # the last iterate is kept for inspection; its numbers must not pass for an answer
+        # wherever the result is read (JSON, a sweep's row, a report)
+        warnings.insert(0, f"NOT converged ({info.reason}): the numbers are the last "
+                           "iterate's, not an answer")
     shares, t, e = ro.shares, ro.traction, mesh_error.errors
     summary = Summary(
         model=disc.name, h_center=ro.h_center, h_inlet=ro.h_inlet, h_outlet=ro.h_outlet,

@@ -1,0 +1,75 @@
+"""What webfem prints says what its numbers mean: a negative gap is a web resting on its
+asperities (said beside the gap), mu is labelled by the case's sliding speed."""
+
+import re
+import warnings
+
+import pytest
+
+import webfem
+from webfem.bundled import as_case
+from webfem.cli.summary import summary_text
+from webfem.io.report import report_html
+
+
+def closed(**values):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return webfem.solve(as_case("base").updated(values), model="closed-form")
+
+
+@pytest.fixture(scope="module")
+def resting():
+    result = closed(**{"web.tension": 1000.0})
+    assert result.summary.resting and result.summary.h_min < 0
+    return result
+
+
+def test_negative_gap_is_explained_where_printed(resting):
+    s = resting.summary
+    gap_line = next(ln for ln in summary_text(resting, "closed-form").splitlines()
+                    if ln.strip().startswith("gap:"))
+    depth = f"{s.compression * 1e6:.3g}"
+    assert f"rests on the asperities, pressed {depth} um into them" in gap_line
+    h_c_line = next(ln for ln in resting.describe().splitlines() if "h_c =" in ln)
+    assert "below 0" in h_c_line
+
+
+def test_positive_gap_prints_no_resting_note():
+    result = closed()
+    assert result.summary.h_min > 0
+    assert "rests on the asperities" not in summary_text(result, "closed-form")
+    assert "rests on the asperities" not in report_html(result)
+
+
+def test_report_explains_negative_gap(resting):
+    html = report_html(resting)
+    head = re.search(r"<p class=sub>(.*?)</p>", html).group(1)
+    assert "smallest gap" in head and "rests on the asperities" in head
+    warnings_section = re.search(r'<section id="warnings">(.*?)</section>', html, re.S).group(1)
+    assert "Note: The web rests on the asperities" in warnings_section
+    # in US units the depth is converted with the gap
+    assert "mil into them" in report_html(resting, units="us")
+
+
+def test_report_labels_mu_by_sliding_speed():
+    sliding = report_html(closed())       # base: U_r = 20 m/s, U_w = 0
+    row = re.search(r"<td>mu</td>.*?</tr>", sliding).group(0)
+    assert "onset of slip" not in row and "slides 20 m/s" in row
+    still = report_html(closed(**{"web.speed": 20.0}))
+    row = re.search(r"<td>mu</td>.*?</tr>", still).group(0)
+    assert "nothing sliding: at the onset of slip" in row
+
+
+def test_plot_under_auto_draws_what_the_chosen_model_has(tmp_path, capsys):
+    from webfem.cli import main
+    out = tmp_path / "v3"
+    assert main(["solve", "idler", "--opt", "tol=0.99", "--plot", "--vtu", str(out),
+                 "--quiet"]) == 0
+    err = capsys.readouterr().err
+    assert (out / "idler_auto_film.png").is_file() and "error" not in err
+    assert "answered: no 2-D film" in err
+    # a model named without a film is refused before anything is solved or written
+    assert main(["solve", "idler", "--model", "fitted", "--plot", "--vtu",
+                 str(tmp_path / "v4")]) == 2
+    assert not (tmp_path / "v4").exists()
