@@ -30,7 +30,8 @@ def _sizes(units: str):
 def groove_chart(designs, mu_min: float, path, best: dict | None = None,
                  units: str = "si") -> Path:
     """Groove sizing map: mu against land fraction, one line per groove pitch (and depth),
-    one panel per roller speed; the mu_min line, feasible designs filled, the best ringed,
+    one panel per roller speed; the mu_min line, feasible designs filled, a flagged design
+    (``flag``: the web sags into its grooves) open with a "!" in it, the best ringed,
     a design without an answer (not converged, no admissible solution) a cross on the
     bottom edge. The legend sits below the panels, clear of the data.
 
@@ -54,8 +55,15 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
             x = [100 * r["land_fraction"] for r in line]
             y = [r["mu"] for r in line]
             ax.plot(x, y, "-", color=colors[key])
-            ax.scatter(x, y, color=colors[key], zorder=3,
+            ax.scatter(x, y, color=colors[key], zorder=3, s=46,
                        facecolors=[colors[key] if r["feasible"] else "white" for r in line])
+            # a flagged design (its answer outside what the model computes) is open
+            # whatever its mu: the mark says why
+            for xi, r in zip(x, line):
+                if r.get("flag"):
+                    ax.annotate("!", (xi, r["mu"]), ha="center", va="center",
+                                color=colors[key], fontsize=6.5, fontweight="bold",
+                                zorder=5)
             failed = [100 * r["land_fraction"] for r in mine if not r["converged"]]
             ax.plot(failed, [bottom] * len(failed), "x", color=colors[key], ms=9, mew=2,
                     clip_on=False, zorder=4)
@@ -77,14 +85,21 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
                for k in keys]
     handles += [Line2D([], [], color="k", ls="--", lw=1, label=f"mu_min = {mu_min:g}"),
                 Line2D([], [], ls="none", marker="o", color="0.4", mfc="white",
-                       label="open: mu < mu_min"),
+                       label="open: mu < mu_min" + (", or flagged" if any(
+                           r.get("flag") for r in rows) else "")),
                 Line2D([], [], ls="none", marker="o", ms=13, mfc="none", color="k",
                        label="ringed: best (most land with mu >= mu_min)")]
+    if any(r.get("flag") for r in rows):
+        handles.append(Line2D([], [], ls="none", marker="$!$", color="0.4",
+                              label="!: the web sags into its grooves: not what fe2d "
+                                    "computes (the CSV's flag)"))
     if any(not r["converged"] for r in rows):
         handles.append(Line2D([], [], ls="none", marker="x", mew=2, color="0.4",
                               label="x: no answer (see the CSV)"))
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
-    fig.suptitle("Grooved roller sizing (fe2d): filled points keep mu >= mu_min", fontsize=11)
+    fig.suptitle("Grooved roller sizing (fe2d): filled points keep mu >= mu_min"
+                 + (" and are within the model" if any(r.get("flag") for r in rows) else ""),
+                 fontsize=11)
     rows_of_legend = (len(handles) + 2) // 3
     fig.subplots_adjust(left=0.07, right=0.98, top=0.86, wspace=0.06,
                         bottom=0.14 + 0.05 * rows_of_legend)
