@@ -296,13 +296,18 @@ def test_the_edge_strip_answers_as_the_full_width():
 def test_a_thin_web_sagging_into_wide_grooves_is_warned():
     """12 um PET over 2 mm grooves under 2 kPa sags ~0.12 mm (p g^4 / 384 D), far more than
     a land gap of microns: the answer says webfem holds the web flat. 36 um PET over the
-    bundled 0.5 mm grooves sags 0.2 um, and the base grooved newsprint 0.1 nm: no warning."""
+    bundled 0.5 mm grooves sags 0.017 um, and the base grooved newsprint 0.1 nm: no warning."""
     thin = PET_IDLER_GROOVED.updated({"web.thickness": 12e-6, "roller.groove_width": 2e-3,
                                       "roller.groove_pitch": 6e-3})
     said = sag_warning(thin, 1.4e-6)
     assert "sags into its 2 mm grooves" in said and "web.modulus_md" in said
     assert sag_warning(PET_IDLER_GROOVED, 0.78e-6) == ""
-    assert sag_warning(thin, 0.0) == ""              # no land gap: nothing to compare with
+    # resting (no land gap): compared with the roughness sigma, which 0.12 mm exceeds
+    assert "the roughness sigma" in sag_warning(thin, 0.0)
+    assert sag_warning(BASE_GROOVED, -0.1e-6) == ""    # 0.1 nm against sigma 4 um
+    resting = BASE_GROOVED.updated({"roller.groove_width": 2.5e-3, "roller.groove_pitch": 5e-3})
+    said = sag_warning(resting, -0.034e-6)           # the base map's 5 mm / 2.5 mm at 40 m/s
+    assert "sags into its 2.5 mm grooves" in said and "resting on its asperities" in said
     r = auto.solve(BASE_GROOVED)
     assert not any("sags" in w for w in r["warnings"])
 
