@@ -26,9 +26,10 @@ def add_parser(subparsers) -> None:
     p.add_argument("--num", type=positive_int, default=20, help="speeds (default 20)")
     p.add_argument("--out", metavar="DIR",
                    help="write CASE_idler.csv (SI: speed, delta_T_required, "
-                        "delta_T_available, slip_margin, mu_onset, converged, model_used; "
-                        "with --units metric|us also a converted copy) and CASE_idler.png "
-                        "into DIR")
+                        "delta_T_available, slip_margin, mu_onset, converged, model_used, "
+                        "error_mu, margin_low, margin_high: the margin's range from mu's "
+                        "stated error; with --units metric|us also a converted copy) and "
+                        "CASE_idler.png into DIR")
     p.add_argument("--json", action="store_true", help="the curve as JSON (SI units)")
     add_units_argument(p)
 
@@ -77,9 +78,10 @@ def _table(curve, units: str) -> str:
     used = curve.models_used or (curve.model,) * len(curve.speeds)
     low = curve.margin_low or curve.slip_margin
     high = curve.margin_high or curve.slip_margin
+    verdicts = curve.verdicts()
     for u, r, a, m, lo, hi, name, verdict in zip(
             curve.speeds, curve.delta_T_required, curve.delta_T_available,
-            curve.slip_margin, low, high, used, curve.verdicts()):
+            curve.slip_margin, low, high, used, verdicts):
         u, r, a = (convert(u, "speed", units), convert(r, "tension", units),
                    convert(a, "tension", units))
         # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
@@ -88,7 +90,6 @@ def _table(curve, units: str) -> str:
         lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g} {span:>19}  "
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
-    verdicts = curve.verdicts()
     unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]
     if slip is not None:
         lines.append(f"  the idler slips above about {display(slip, 'speed', units, 3)}"

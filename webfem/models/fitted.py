@@ -355,8 +355,7 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     # carried through, not the cell's mu error (measured on the campaign's sliding cases)
     idle = v["U_slide"] == 0.0
     if np.any(idle):
-        mu_cc = np.array([c.friction.mu_cc for c in cases])
-        carried = onset_error(np.array([t["mu"] for t in traction]), mu_cc,
+        carried = onset_error(v["mu_cc"] * r["contact_share"], v["mu_cc"],
                               per_case["error_contact_share"])
         per_case["error_mu"] = np.where(idle, carried, per_case["error_mu"])
     names = list(per_case)

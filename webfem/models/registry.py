@@ -43,7 +43,7 @@ MODELS: dict[str, ModelSpec] = {spec.name: spec for spec in (
               "the paper's Eq. 21 gap with Eqs. 10-13, 28-31 (microseconds)"),
     ModelSpec("fitted", fitted.solve_case, FittedOptions,
               "a fit of fe2d solutions in the dimensionless groups, errors from a hold-out "
-              "set (smooth rollers, inside its domain; ~0.1 ms)"),
+              "set (smooth rollers, inside its domain; ~0.6 ms a case)"),
     ModelSpec("fe1d", fe1d.solve_case, FE1DOptions,
               "1-D finite elements: infinitely wide film coupled to the web (~0.1 s)"),
     ModelSpec("fe2d", fe2d.solve_case, FE2DOptions,
