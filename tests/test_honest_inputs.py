@@ -110,3 +110,12 @@ def test_groove_lists_name_flag_value_range_and_unit(capsys, tmp_path, flag, tex
 def test_groove_pitches_read_unit_strings():
     from webfem.cli.grooves import _floats
     assert _floats("pitches", "1.27 mm, 0.005") == pytest.approx([1.27e-3, 5e-3])
+
+
+def test_groove_lands_read_percent():
+    from webfem.cli.grooves import _floats
+    assert _floats("lands", "50 %, 0.8,65%") == pytest.approx([0.5, 0.8, 0.65])
+    with pytest.raises(InputError, match=r"120 % = 1\.2 is out of range"):
+        _floats("lands", "120 %")
+    with pytest.raises(InputError, match="'half' is not a number"):
+        _floats("lands", "half")

@@ -35,35 +35,45 @@ _LIST_KEYS = {"pitches": "roller.groove_pitch", "loss_pitches": "roller.groove_p
 
 def _floats(name: str, text: str) -> list[float]:
     """The values of list option ``--NAME``: lengths in metres or with a unit ("1.27 mm"),
-    > 0; land fractions as numbers > 0 and < 1. A bad item is an error naming the flag, the
-    text, the item, the unit and the valid range."""
+    > 0; land fractions as numbers > 0 and < 1, or in percent ("50 %"). A bad item is an
+    error naming the flag, the text, the item, the unit and the valid range."""
     flag, key = "--" + name.replace("_", "-"), _LIST_KEYS[name]
     hi = key_meta(key)["hi"] if key else 1.0
     what = (f"lengths > 0 and <= {hi:g} m (the case key {key}'s range), in m or with a unit, "
             "comma-separated (e.g. 0.00127,2.5 mm)" if key else
-            "land fractions a/pitch > 0 and < 1, comma-separated (e.g. 0.5,0.8)")
+            "land fractions a/pitch > 0 and < 1, or in percent, comma-separated (e.g. 0.5,0.8 "
+            "or 50 %,80 %)")
     values = []
     for item in (t.strip() for t in text.split(",")):
         if not item:
             continue
-        try:
-            value = float(item)
-        except ValueError:
-            if key is None:
-                raise InputError(f"{flag} = {text!r}: {item!r} is not a number; give "
-                                 f"{what}") from None
-            try:
-                value = to_si(key, item, "m")
-            except InputError as err:
-                why = str(err).split(" = ", 1)[-1]
-                raise InputError(f"{flag} = {text!r}: {why}; give {what}") from None
+        value = _item_value(flag, key, text, item, what)
         if not (0.0 < value < 1.0 if key is None else 0.0 < value <= hi):
-            shown = item if value == _number(item) else f"{item} = {value:g} m"
+            unit = "" if key is None else " m"
+            shown = item if value == _number(item) else f"{item} = {value:g}{unit}"
             raise InputError(f"{flag} = {text!r}: {shown} is out of range; give {what}")
         values.append(value)
     if not values:
         raise InputError(f"{flag} = {text!r}: give at least one value: {what}")
     return values
+
+
+def _item_value(flag: str, key: str | None, text: str, item: str, what: str) -> float:
+    """One item of a list option: a plain number, a length with a unit (``key`` names the
+    case key whose unit it is read in), or a land fraction in percent (``key`` None)."""
+    value = _number(item)
+    if value is not None:
+        return value
+    if key is None:
+        percent = _number(item[:-1]) if item.endswith("%") else None
+        if percent is None:
+            raise InputError(f"{flag} = {text!r}: {item!r} is not a number; give {what}")
+        return percent / 100.0
+    try:
+        return to_si(key, item, "m")
+    except InputError as err:
+        why = str(err).split(" = ", 1)[-1]
+        raise InputError(f"{flag} = {text!r}: {why}; give {what}") from None
 
 
 def _number(text: str) -> float | None:
@@ -115,7 +125,8 @@ def add_parser(subparsers) -> None:
                         f"(default "
                         f"{_listed(DEFAULT_PITCHES)})")
     p.add_argument("--lands", default=_listed(DEFAULT_LAND_FRACTIONS),
-                   help=f"land fractions a/pitch, comma-separated (default "
+                   help=f"land fractions a/pitch, or in percent (\"50 %%\"), comma-separated "
+                        f"(default "
                         f"{_listed(DEFAULT_LAND_FRACTIONS)})")
     p.add_argument("--depths", default=f"{DEFAULT_DEPTH:g}",
                    help=f"groove depths [m, or with a unit], comma-separated (default "
