@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pytest
 
+import webfem
 from webfem import Case
 from webfem.errors import InputError
 from webfem.fem.scaling import FoilParameters
@@ -309,3 +310,16 @@ def test_no_drag_no_idler_check():
     assert out == dict(delta_T_required=None, delta_T_available=None, slip_margin=None,
                        mu_onset=None)
     assert fe1d.solve(IMPERMEABLE)["slip_margin"] is None
+
+
+def test_slip_warning_says_what_the_slip_model_leaves():
+    """Below 10 mean free paths the warning follows the slip model: with first-order slip
+    (the default) it must not claim the continuum equation is used."""
+    from webfem.physics.validity import slip_warning
+    base = webfem.load_case("base")
+    with_slip = slip_warning(base, 4e-7)
+    assert "first-order slip webfem includes" in with_slip and "continuum" not in with_slip
+    assert "Kn = 0.17" in with_slip
+    without = slip_warning(base.updated({"air.slip": "none"}), 4e-7)
+    assert "continuum Reynolds equation overestimates" in without
+    assert slip_warning(base, 1e-6) is None and slip_warning(base, -1e-7) is None
