@@ -240,6 +240,15 @@ def _write(path, text, encoding="utf-8"):
     return path
 
 
+def test_measurement_cells_of_case_keys_take_units(tmp_path):
+    p = _write(tmp_path / "m.csv", "roller_speed,tension,wrap_deg,delta_T\n"
+               "600 m/min,0.05 kN/m,90 deg,12\n2,40,120,10\n")
+    rows = read_measurements(p)
+    assert rows[0] == pytest.approx({"roller.speed": 10.0, "web.tension": 50.0,
+                                     "wrap.angle_deg": 90.0, "delta_T": 12.0})
+    assert rows[1]["roller.speed"] == 2.0
+
+
 @pytest.mark.parametrize("text,encoding,words", [
     ("roller_speed,delta_T\n2,10\n5,-3\n", "utf-8", ["line 3", "delta_T = -3.0", "negative"]),
     ("roller_speed,mu\n2,0.2\n5,nan\n", "utf-8", ["line 3", "mu = nan", "not finite"]),
@@ -248,6 +257,8 @@ def _write(path, text, encoding="utf-8"):
     ("# mesure à 20 °C\nroller_speed,delta_T\n2,10\n", "latin-1", ["not UTF-8", "UTF-8"]),
     ("speed,roller_speed,delta_T\n2,2,10\n", "utf-8", ["'speed' and 'roller_speed'"]),
     ("roller_speed,delta_T\n2,10,7\n", "utf-8", ["line 2", "3 values for 2 columns"]),
+    ("roller_speed,delta_T\n2 kg,10\n", "utf-8", ["line 2", "'roller_speed'", "expected speed"]),
+    ("roller_speed,delta_T\n2,10 N/m\n", "utf-8", ["line 2", "'10 N/m' is not a number"]),
 ])
 def test_measurement_files_are_read_strictly(tmp_path, capsys, text, encoding, words):
     p = _write(tmp_path / "m.csv", text, encoding)

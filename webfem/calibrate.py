@@ -41,9 +41,11 @@ from .api import solve
 from .case import Case, valid_keys
 from .effects import answered_by
 from .errors import InputError, ValidityWarning
+from .keys import key_meta
 from .models.closed import case_arrays, evaluate
 from .models.registry import make_options
 from .physics.friction import delta_T_from_mu, friction_for
+from .units import to_si
 
 __all__ = ["Calibration", "read_measurements", "calibrate", "COLUMN_ALIASES"]
 
@@ -144,9 +146,26 @@ def _check_measured(key: str, value: float, where: str) -> None:
                          f"{MEASURED[key]} must be >= 0")
 
 
+def _cell_value(name: str, key: str, cell: str, where: str) -> float:
+    """A cell's value in SI: a number, or for a case key a number with a unit ("2 m/s",
+    "120 deg"), read as the case files read it; measured columns take plain numbers."""
+    try:
+        return float(cell)
+    except ValueError:
+        pass
+    if key in MEASURED:
+        raise InputError(f"{where}: column '{name}' = {cell.strip()!r} is not a number "
+                         f"(a measured {MEASURED[key]}: give the number alone)")
+    try:
+        return to_si(key, cell.strip(), key_meta(key)["unit"])
+    except InputError as err:
+        raise InputError(f"{where}: column '{name}': {err}") from None
+
+
 def read_measurements(path) -> list[dict]:
     """Rows of a measurement CSV (UTF-8): case keys (dotted or the short aliases of
-    :data:`COLUMN_ALIASES`) and one measured column, ``delta_T`` [N/m] or ``mu``.
+    :data:`COLUMN_ALIASES`) and one measured column, ``delta_T`` [N/m] or ``mu``. A case
+    key's cell is a number in SI units or a number with a unit (``2 m/s``, ``120 deg``).
 
     Lines starting with ``#`` are comments. Each bad cell is an :class:`InputError` naming
     the file, line and column: unknown columns (with the closest valid name), text where a
@@ -182,11 +201,7 @@ def read_measurements(path) -> list[dict]:
                              f"({', '.join(header)})")
         row = {}
         for name, key, cell in zip(header, keys, cells):
-            try:
-                value = float(cell)
-            except ValueError:
-                raise InputError(f"{where}: column '{name}' = {cell.strip()!r} is not a "
-                                 "number") from None
+            value = _cell_value(name, key, cell, where)
             if key in MEASURED:
                 _check_measured(key, value, where)
             elif not math.isfinite(value):
