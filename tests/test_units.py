@@ -58,8 +58,10 @@ BAD = [
     ("web.roughness", "um", ["'um' is not a number", "give a number and a unit"]),
     ("web.tension", "80", ["'80' is not a number", "quoted text needs a unit",
                            "unquoted, in N/m"]),
-    ("roller.speed", "-5 m/s", ["roller.speed = -5.0 is out of range", ">= 0"]),
-    ("web.width", "1e400 m", ["web.width = inf is out of range"]),
+    ("roller.speed", "-5 m/s", ["roller.speed = '-5 m/s' = -5 m/s is out of range", ">= 0"]),
+    ("roller.speed", "-5 m/min", ["roller.speed = '-5 m/min' = -0.0833333 m/s is out of range",
+                                  "<= 300 [m/s]"]),
+    ("web.width", "1e400 m", ["web.width = '1e400 m' = inf m is out of range"]),
     ("web.tension", "0.5 pli pli", ["has dimension", "force/length"]),
 ]
 

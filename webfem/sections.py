@@ -27,7 +27,7 @@ from typing import Any, Mapping
 
 from .errors import InputError, show, unknown_name
 from .units import examples, to_si
-from .validated import Validated, interval_text, spec
+from .validated import Validated, interval_text, outside, spec
 
 __all__ = ["ALIASES", "SECTIONS", "Air", "Friction", "Model", "Roller", "Section", "Web",
            "Wrap", "physical_ranges", "range_text", "resolve_aliases", "valid_keys"]
@@ -149,7 +149,11 @@ class Section(Validated):
             if type(value) is float:   # the common case: nothing to read
                 pass
             elif isinstance(value, str):   # pint is imported only when text is read
-                value = to_si(cls.label(name), value, meta["unit"])
+                text, value = value, to_si(cls.label(name), value, meta["unit"])
+                if outside(value, meta):   # the message shows what the user typed
+                    raise InputError(f"{cls.label(name)} = {show(text)} = {value:.6g} "
+                                     f"{meta['unit']} is out of range: "
+                                     f"{cls.valid_text(meta)}")
             elif isinstance(value, numbers.Real) and not isinstance(value, bool):
                 try:   # a key is a float: messages show it as one (-1.0, not -1)
                     value = float(value)
