@@ -245,3 +245,11 @@ def test_help_says_what_units_change(capsys):
         main(["sweep", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "NAME_us.csv" in text and "CSV files stay SI" in text and "JSON stays SI" in text
+
+
+def test_stated_errors_print_two_digits():
+    """A stated error of 1.62 printed as '2' (README quotes 1.6): two significant digits."""
+    from webfem.describe import error_text
+    text = error_text({"error_h_center": 1.62, "error_h_min": 0.00043, "error_mu": None,
+                       "error_contact_share": 8.5e-05})
+    assert text.startswith("h_center 1.6, h_min 0.00043, contact share 8.5e-05 (")

@@ -12,11 +12,12 @@ _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
 
 def error_text(s) -> str | None:
     """The stated errors of a summary on one line, or None where it states none:
-    ``h_center 3e-04, h_min 4e-05, mu 3e-04 (relative), contact share 8e-05 (absolute)``."""
+    ``h_center 0.00032, h_min 4.1e-05, mu 0.0003, contact share 8.5e-05 (...)``: two digits
+    (one rounded 1.62 to "2")."""
     values = {q: s.get(f"error_{q}") for q in _NAMES}
     if all(v is None for v in values.values()):
         return None
-    parts = [f"{_NAMES[q]} {v:.1g}" for q, v in values.items() if v is not None]
+    parts = [f"{_NAMES[q]} {v:.2g}" for q, v in values.items() if v is not None]
     return ", ".join(parts) + (" (gaps against max(h, sigma), mu against max(|mu|, 0.1 mu_cc), "
                                "the contact share absolute)")
 
