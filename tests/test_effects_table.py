@@ -40,6 +40,14 @@ def test_effects_cli_prints_the_table(capsys):
     assert main(["effects", "cases/base.toml", "--model", "closed-form", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["not_carried"] == ["bending", "slip", "isothermal-permeation", "spans"]
+    # --units as every table command takes it: the gaps in mil, the same numbers
+    assert main(["effects", "cases/base.toml", "--model", "closed-form", "--quiet"]) == 0
+    si = capsys.readouterr().out.splitlines()
+    assert main(["effects", "cases/base.toml", "--model", "closed-form", "--quiet",
+                 "--units", "us"]) == 0
+    us = capsys.readouterr().out.splitlines()
+    assert "h_center um" in si[1] and "h_center mil" in us[1] and "h_min mil" in us[1]
+    assert float(us[2].split()[2]) == pytest.approx(float(si[2].split()[2]) / 25.4, abs=1e-3)
 
 
 def test_idler_margin_falls_with_line_speed(idler, tmp_path, capsys):

@@ -30,6 +30,7 @@ from .case import Case
 from .models.options import fe_options
 from .models.registry import make_options, model_spec
 from .physics.effects import SWITCH_OFF, included
+from .units import ROLES, convert, unit_label
 
 __all__ = ["EffectRow", "EffectsTable", "effects_table", "answered_by"]
 
@@ -100,8 +101,11 @@ class EffectsTable:
                 "why": self.why, "errors": {k: v if v is not None and math.isfinite(v)
                                             else None for k, v in (self.errors or {}).items()}}
 
-    def text(self) -> str:
-        """A fixed-width table: how much switching each effect off moves the answer."""
+    def text(self, units: str = "si") -> str:
+        """A fixed-width table: how much switching each effect off moves the answer, the gaps
+        in ``units`` ("si" and "metric": um, "us": mil)."""
+        gap = unit_label(ROLES["h_center"], units)
+        w1, w2 = max(12, len(gap) + 10), max(10, len(gap) + 7)    # um: as before
         idler = self.rows[0].slip_margin is not None
         chosen = (f" (auto's choice for the full case; every row solved with {self.model})"
                   if self.asked and self.asked != self.model else "")
@@ -109,13 +113,14 @@ class EffectsTable:
                  "each one switched off (change relative to all included)"]
         if chosen and self.why:
             lines.append(f"  why {self.model}: {self.why}")
-        lines.append(f"  {'effect switched off':<24}{'h_center um':>12}{'h_min um':>10}"
+        lines.append(f"  {'effect switched off':<24}{'h_center ' + gap:>{w1}}{'h_min ' + gap:>{w2}}"
                      f"{'mu':>9}{'d h_center':>12}{'d h_min':>10}{'d mu':>10}"
                      + (f"{'slip margin':>13}" if idler else ""))
         small_mu = abs(self.rows[0].mu) < 1e-3
         for r in self.rows:
             d_mu = (("-" if r.d_mu == 0 else f"{r.d_mu:+.4f}") if small_mu else _pct(r.d_mu))
-            lines.append(f"  {r.effect:<24}{r.h_center * 1e6:>12.3f}{r.h_min * 1e6:>10.3f}"
+            h_c, h_m = (convert(v, ROLES["h_center"], units) for v in (r.h_center, r.h_min))
+            lines.append(f"  {r.effect:<24}{h_c:>{w1}.3f}{h_m:>{w2}.3f}"
                          f"{r.mu:>9.4f}{_pct(r.d_h_center):>12}{_pct(r.d_h_min):>10}"
                          f"{d_mu:>10}" + (f"{r.slip_margin:>13.3g}" if idler else ""))
         if small_mu:
@@ -123,7 +128,7 @@ class EffectsTable:
         known = {k: v for k, v in (self.errors or {}).items() if v is not None}
         if known:
             lines.append("  stated errors of the full answer: " + ", ".join(
-                f"{k.removeprefix('error_')} {v:.1g}" for k, v in known.items())
+                f"{k.removeprefix('error_')} {v:.2g}" for k, v in known.items())
                 + " (a smaller change is within them)")
         if self.not_carried:
             lines.append(f"  ({', '.join(self.not_carried)}: not carried by {self.model})")

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from ..effects import effects_table
-from .common import (HELP_FORMATTER, Progress, add_case_arguments, case_from, model_options,
-                     options_epilog, print_json)
+from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_units_argument,
+                     case_from, model_options, options_epilog, print_json)
 
 
 def add_parser(subparsers) -> None:
@@ -20,6 +20,7 @@ def add_parser(subparsers) -> None:
     add_case_arguments(p)
     p.add_argument("--json", action="store_true", help="the table as JSON")
     p.add_argument("--quiet", action="store_true", help="no progress line")
+    add_units_argument(p)
 
 
 def run(args) -> int:
@@ -29,5 +30,5 @@ def run(args) -> int:
     if args.json:
         print_json(table.to_dict())
     else:
-        print(table.text())
+        print(table.text(args.units))
     return 0
