@@ -67,6 +67,8 @@ def test_page_is_self_contained(page):
         assert width > 400 and height > 300
     assert "roller.speed" in html and "m/s" in html and "closed-form" in html
     assert "How it was computed" in html and "webfem" in html
+    # a key not set says what is used instead (not "left out": read as "not modelled")
+    assert "not set, so: D = E_m t^3 / 12" in html and "left out" not in html
 
 
 def run_chromium(args, tmp_path):

@@ -44,8 +44,9 @@ def solve(case: Case | str | os.PathLike, model: str = "auto", *,
     model : str
         ``"auto"`` (default: the cheapest model whose stated errors in h_center, h_min, mu
         and the contact share meet ``tol``, 1 %), ``"closed-form"`` (the paper's Eq. 21,
-        microseconds), ``"fe1d"`` (infinitely wide film + web, tens of milliseconds) or
-        ``"fe2d"`` (2-D film with edge leakage + web, about 0.3 s).
+        about 0.5 ms a case), ``"fitted"`` (a fit of fe2d's answers, about 0.6 ms a case;
+        smooth rollers inside its domain), ``"fe1d"`` (infinitely wide film + web, 10-100
+        ms) or ``"fe2d"`` (2-D film with edge leakage + web, 0.1-0.5 s on realistic cases).
     initial : Result, optional
         A converged result of the same model at a nearby point to start from (continuation).
         The cost depends on it; the answer only within its stated mesh error (fe2d may keep

@@ -67,9 +67,11 @@ _EXAMPLES_BY_KEY = {
     "web.thickness": ("70 um", "2.76 mil"), "web.roughness": ("4 um", "0.16 mil"),
     "web.modulus_md": ("4.46 GPa", "647 ksi"), "air.ambient_pressure": ("101.325 kPa",
                                                                           "14.7 psi"),
-    "air.mean_free_path": ("65 nm", "2.56 uin"), "roller.drag_torque": ("0.05 N*m",
-                                                                       "0.44 lbf*in"), "friction.speed_constant": ("0.4 m/s",
-                                                                             "79 ft/min"),
+    "air.mean_free_path": ("65 nm", "2.56 uin"),
+    "roller.drag_torque": ("0.05 N*m", "0.44 lbf*in"),
+    "friction.speed_constant": ("0.4 m/s", "79 ft/min"),
+    "roller.groove_pitch": ("1.27 mm", "0.05 in"), "roller.groove_width": ("0.6 mm", "0.024 in"),
+    "roller.groove_depth": ("0.25 mm", "0.01 in"), "wrap.span": ("1 m", "40 in"),
 }
 _NUMBER_FIRST = re.compile(r"\s*[-+]?(\d|\.\d)")
 _MIL = re.compile(r"(?<![A-Za-z_])mils?(?![A-Za-z_])")

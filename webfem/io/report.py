@@ -136,8 +136,9 @@ def _inputs(case, units: str = "si") -> str:
             meta, value = f.metadata, getattr(part, f.name)
             unit, doc = meta.get("unit", ""), meta.get("doc", "")
             key = f"{section.name}.{f.name}"
-            if value is None:   # left out: the key says what that means
-                shown, doc = "left out", f"{doc}; left out: {meta.get('absent', '')}"
+            if value is None:   # not set: the key says what is used instead ("left out"
+                # read as "not modelled" to a user whose bending stiffness was computed)
+                shown, doc = "not set", f"{doc}; not set, so: {meta.get('absent', '')}"
             elif units == "si":   # the keys' own units, as a case file holds them
                 shown = _num(value)
             else:

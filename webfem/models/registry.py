@@ -40,14 +40,15 @@ class ModelSpec:
 
 MODELS: dict[str, ModelSpec] = {spec.name: spec for spec in (
     ModelSpec("closed-form", closed.solve_case, ClosedFormOptions,
-              "the paper's Eq. 21 gap with Eqs. 10-13, 28-31 (microseconds)"),
+              "the paper's Eq. 21 gap with Eqs. 10-13, 28-31 (~0.5 ms a case; microseconds a "
+              "point in solve_many)"),
     ModelSpec("fitted", fitted.solve_case, FittedOptions,
               "a fit of fe2d solutions in the dimensionless groups, errors from a hold-out "
               "set (smooth rollers, inside its domain; ~0.6 ms a case)"),
     ModelSpec("fe1d", fe1d.solve_case, FE1DOptions,
-              "1-D finite elements: infinitely wide film coupled to the web (~0.1 s)"),
+              "1-D finite elements: infinitely wide film coupled to the web (10-100 ms)"),
     ModelSpec("fe2d", fe2d.solve_case, FE2DOptions,
-              "2-D film over the wrap with edge leakage, coupled to the 1-D web (~1 s)"),
+              "2-D film over the wrap with edge leakage, coupled to the 1-D web (0.1-0.5 s)"),
     ModelSpec("auto", auto.solve_case, AutoOptions,
               "the cheapest of the above whose estimated error meets a tolerance"),
 )}
