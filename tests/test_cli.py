@@ -231,6 +231,35 @@ def test_interrupted_sweep_says_what_was_saved(monkeypatch, tmp_path, capsys):
                    f"{tmp_path / 'base_closed-form.csv'}; run the same command to continue")
 
 
+def test_sigterm_ends_a_sweep_as_ctrl_c_does(tmp_path):
+    """`kill PID` (SIGTERM) on a sweep on 2 processes: the lock released, the saved points
+    said, exit 143 (it used to die silently, leaving .NAME.csv.lock behind)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "webfem", "sweep", "cases/fig10_wrap.toml", "--model", "fe1d",
+         "--out", str(tmp_path), "--workers", "2", "--quiet"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True)
+    csv = tmp_path / "fig10_wrap_fe1d.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if csv.exists() and len(csv.read_text().splitlines()) > 3:
+            break
+        time.sleep(0.2)
+    assert proc.poll() is None, "the sweep ended before it could be stopped"
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143, err
+    assert "webfem: interrupted:" in err and "points saved in" in err
+    assert "Traceback" not in err
+    assert not (tmp_path / ".fig10_wrap_fe1d.csv.lock").exists()
+
+
 def test_keys_into_a_closed_pipe_is_quiet():
     """`webfem keys | head -1`: the reader goes away; no BrokenPipeError traceback."""
     import subprocess

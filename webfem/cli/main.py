@@ -11,8 +11,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
 import warnings
+from contextlib import contextmanager
 
 from ..errors import ConvergenceError, InputError, ValidityWarning
 from .common import error_line
@@ -77,11 +79,36 @@ def _interrupted(err: KeyboardInterrupt) -> None:
         print(f"{start}webfem: interrupted", file=sys.stderr)
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM (a job scheduler, ``kill``, a closing terminal session) taken as Ctrl-C is:
+    files closed, a sweep's lock released and what is saved said, instead of dying with a
+    stale lock and nothing printed."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
+@contextmanager
+def _sigterm_as_interrupt():
+    """SIGTERM raises :class:`Terminated` in this process while a command runs (worker
+    processes reset it: :func:`webfem.sweeps.workers._worker_start`)."""
+    try:
+        old = signal.signal(signal.SIGTERM, _terminate)
+    except ValueError:   # not the main thread (a caller's thread): leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, old)
+
+
 def main(argv=None) -> int:
     """Run ``webfem`` with ``argv`` (default: the command line); returns the exit code."""
     args = build_parser().parse_args(argv)
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), _sigterm_as_interrupt():
             # the summary (or the JSON "warnings" key) already carries each validity warning
             warnings.simplefilter("ignore", ValidityWarning)
             code = args._run(args)
@@ -95,7 +122,7 @@ def main(argv=None) -> int:
         return 3
     except KeyboardInterrupt as err:
         _interrupted(err)
-        return 130
+        return 143 if isinstance(err.__cause__ or err, Terminated) else 130
     except BrokenPipeError:
         _stdout_gone()
         return 0

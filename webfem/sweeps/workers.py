@@ -128,13 +128,16 @@ class Dask:
 
 
 def _worker_start() -> None:
-    """Set up a local worker process: Ctrl-C is the main process's to handle, and one BLAS
-    thread. N worker processes on N cores, each with BLAS threads of its own (numpy and
-    scipy start one per core), oversubscribe the machine: the 24-point fe2d speed sweep of
-    the base case took 5.0-7.8 s on 2 processes against 6.2 s serial, 3.4 s with one BLAS
-    thread per worker (benchmarks/bench_sweeps.py). Dask's workers get the same from its
+    """Set up a local worker process: Ctrl-C is the main process's to handle (SIGTERM ends
+    it, as by default), and one BLAS thread. N worker processes on N cores, each with BLAS
+    threads of its own (numpy and scipy start one per core), oversubscribe the machine: the
+    24-point fe2d speed sweep of the base case took 5.0-7.8 s on 2 processes against 6.2 s
+    serial, 3.4 s with one BLAS thread per worker (benchmarks/bench_sweeps.py). Dask's workers get the same from its
     nanny (OPENBLAS_NUM_THREADS=1 and the like)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # a forked worker inherits the command's SIGTERM handler (webfem.cli.main): the pool
+    # stops its workers with SIGTERM, which must end them, not raise inside them
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     from threadpoolctl import threadpool_limits
 
     global _BLAS_LIMIT
