@@ -340,3 +340,45 @@ def test_rounding_floor_on_the_whole_jacobian_is_the_reduced_ones(film):
                          np.append(J.indptr[:-1], J.nnz + 1)), shape=J.shape)
     assert not dup.has_canonical_format
     assert np.isfinite(nw.rounding_floor(dup, u, p.free))
+
+
+@pytest.mark.parametrize("newton", [True, False])
+def test_leading_blocks_in_one_product_are_the_block_by_block_bits(film, newton):
+    """The film's leading blocks (each test operator's first, with that operator on the
+    trial side too) filled in one product (FastForm._lead_terms) give the element matrices
+    of the block-by-block fill, bit for bit."""
+    p, u = film
+    fast_form = p.system.fast
+    values = p.system.values(u, PRM, newton)
+    assert any(leads for leads in fast_form._leads[0].values())      # the path is taken
+    with_leads = fast_form.blocks(values)
+    kept = fast_form._leads
+    fast_form._leads = [{} for _ in kept]
+    try:
+        one_by_one = fast_form.blocks(values)
+    finally:
+        fast_form._leads = kept
+    assert len(with_leads) == len(one_by_one)
+    for a, b in zip(with_leads, one_by_one):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_residual_coefficients_first_then_the_jacobians_are_the_same_bits(film):
+    """A residual's coefficients computed alone, then the Jacobian's from their parts (Newton's
+    and Picard's at one state), are film_coefficients' all at once, bit for bit; a residual
+    after a Jacobian at the same state is the one before it."""
+    p, u = film
+    fresh = FoilBearing2D(p.X, p.Z, order=p.order)
+    F = p.residual(u, PRM)
+    for newton in (True, False):
+        J = p.system.fast.jacobian(p.system.values(u, PRM, newton)).toarray()
+        full = fresh.system._film_values(*_film_state(fresh, u), PRM, newton)
+        np.testing.assert_array_equal(J, fresh.system.fast.jacobian(
+            [full, fresh.system.values(u, PRM, newton)[1]]).toarray())
+    np.testing.assert_array_equal(F, p.residual(u, PRM))
+    np.testing.assert_array_equal(F, fresh.residual(u, PRM))
+
+
+def _film_state(p, u):
+    P, gP = p.system.f.interpolate(u[:p.nP])
+    return P, gP[0], gP[1], u[p.nP:]

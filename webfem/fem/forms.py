@@ -47,7 +47,8 @@ import numpy as np
 from ..physics.roughness import mean_excess, mean_gap, wet_share
 from .weakform import Block, Term, WeakForm
 
-__all__ = ["FILM", "SINK", "WEB", "COUPLING", "film_coefficients", "web_coefficients",
+__all__ = ["FILM", "SINK", "WEB", "COUPLING", "film_coefficients", "film_residual_coefficients",
+           "film_jacobian_coefficients", "web_coefficients",
            "coupling_coefficients", "flow_gap", "film_gap", "contact_law", "departure",
            "in_wrap", "upwind_switch", "streamline_diffusion", "UPWIND_PE", "UPWIND_POWER"]
 
@@ -112,9 +113,16 @@ def flow_gap(H, prm):
     flow gap E[(H - z)+] over the asperity heights (:func:`webfem.physics.roughness.
     mean_gap`: positive by construction, H to within 2.5 % of S above 3 S), else H with the
     numerical floor of :func:`film_gap`."""
+    Hf, wet = _flow_gap(H, prm)
+    return Hf, wet(H) if callable(wet) else wet
+
+
+def _flow_gap(H, prm):
+    """:func:`flow_gap` with its derivative as a function of H where it costs a pass of its
+    own (the roughness's wet share: a Jacobian's only)."""
     if prm.get("flow", 0):
         law = "gaussian" if prm.get("law", 0) == 1 else "exponential"
-        return mean_gap(H, prm["S"], law), wet_share(H, prm["S"], law)
+        return mean_gap(H, prm["S"], law), lambda h: wet_share(h, prm["S"], law)
     return film_gap(H, prm["floor"])
 
 
@@ -165,6 +173,13 @@ def streamline_diffusion(Hf, D, hx, prm):
     1. Where Pe is small (every flying film: Pe <= 0.6 on the bundled cases; the bundled
     board, resting 0.6 sigma deep: Pe <= 5) nu is D O((Pe / UPWIND_PE)^16) Pe: it changes
     nothing and keeps the discretisation's order (tests/test_upwind.py)."""
+    nu, parts = _streamline(Hf, D, hx, prm)
+    return (nu,) + _streamline_derivatives(parts)
+
+
+def _streamline(Hf, D, hx, prm):
+    """:func:`streamline_diffusion`'s nu, and what its derivatives are made of (for
+    :func:`_streamline_derivatives`, asked for only where a Jacobian is)."""
     a, d = prm.get("couette", 1.0), prm["d"]
     D = np.asarray(D, float)
     ok = D > 0.0
@@ -172,14 +187,19 @@ def streamline_diffusion(Hf, D, hx, prm):
         inv = np.where(ok, 1.0 / np.where(ok, D, 1.0), 0.0)
     bh2 = 0.5 * a * d * hx                        # b h / 2 per unit flow gap
     psi, dpsi = upwind_switch(bh2 * Hf * inv / UPWIND_PE)
+    return bh2 * Hf * psi, (Hf, inv, bh2, ok, psi, dpsi)
+
+
+def _streamline_derivatives(parts):
+    """:func:`streamline_diffusion`'s ``(nu_D, nu_Hf)`` from :func:`_streamline`'s parts."""
+    Hf, inv, bh2, ok, psi, dpsi = parts
     dpsi = np.where(ok, dpsi, 0.0)
-    nu = bh2 * Hf * psi
     # t = bh2 Hf / (D UPWIND_PE): dpsi/dD = -(t dpsi/dt) / D, dpsi/dHf = (t dpsi/dt) / Hf;
     # where full upwinding is reached (dpsi = 0) nu no longer depends on D, even where 1/D
     # overflows (a denormal conductance: inf x 0 made the Jacobian NaN)
     with np.errstate(invalid="ignore", over="ignore"):
         nu_D = np.where(dpsi > 0.0, -(bh2 * Hf * inv) * dpsi, 0.0)
-    return nu, nu_D, bh2 * (psi + dpsi)
+    return nu_D, bh2 * (psi + dpsi)
 
 
 def film_coefficients(H, P, PX, PZ, prm, newton: bool = True, hx=None) -> dict:
@@ -191,29 +211,61 @@ def film_coefficients(H, P, PX, PZ, prm, newton: bool = True, hx=None) -> dict:
     ``hx``: the length along X of the cell each point lies in; with it the X flux gets the
     streamline diffusion of :func:`streamline_diffusion`, which vanishes to high order where
     the cell Peclet number is small. None (the default): no streamline
-    diffusion (the manufactured solutions, the sink's own part)."""
+    diffusion (the manufactured solutions, the sink's own part).
+
+    :func:`film_residual_coefficients` then :func:`film_jacobian_coefficients`: the same
+    numbers, the residual's alone where no Jacobian is asked for."""
+    out, parts = film_residual_coefficients(H, P, PX, PZ, prm, hx)
+    out.update(film_jacobian_coefficients(parts, newton))
+    return out
+
+
+def film_residual_coefficients(H, P, PX, PZ, prm, hx=None) -> tuple[dict, tuple]:
+    """The residual's coefficients of :data:`FILM` and :data:`SINK` (``flux_x``, ``flux_z``,
+    ``sink``; arguments as :func:`film_coefficients`') and what the Jacobian's are made of,
+    for :func:`film_jacobian_coefficients`. Why apart: Newton's line search and chord steps
+    ask for residuals at states whose Jacobian is never assembled (10 of the 15 2-D states
+    of the base case's cold solve), and the Jacobian's coefficients were about half of the
+    work."""
     d, K, s = prm["d"], prm["K"], prm.get("slip", 0.0)
     ds = prm.get("ds", d)
     # the Couette (entrainment) flux scaled by a (1: the physics; below 1 only on the way to
     # a resting web, :func:`webfem.fem.continuation.film_strength`: a = 0 has P = 0)
     a = prm.get("couette", 1.0)
-    Hf, above = flow_gap(H, prm)
+    Hf, wet = _flow_gap(H, prm)
     rho, rho_s = 1.0 + d * P, 1.0 + ds * P
     Hf2 = Hf**2
     Hf3 = Hf2 * Hf
     diffusion = rho * Hf3 + s * Hf2           # Poiseuille conductance with slip
-    dD = 3.0 * rho * Hf2 + 2.0 * s * Hf       # its derivative in H
-    nt = 1.0 if newton else 0.0
-    nu, nu_P, nu_H = 0.0, 0.0, 0.0
+    nu, upwind = 0.0, None
     if hx is not None and a * d > 0.0:
-        nu, nu_D, nu_Hf = streamline_diffusion(Hf, diffusion, hx, prm)
-        nu_P = nu_D * d * Hf3                     # dnu/dP through D
-        nu_H = nu_Hf + nu_D * dD                  # dnu/dHf, directly and through D
+        nu, upwind = _streamline(Hf, diffusion, hx, prm)
     diffusion_x = diffusion + nu
-    return {
+    out = {
         "flux_x": diffusion_x * PX - a * rho * Hf,  # Poiseuille minus Couette along X
         "flux_z": diffusion * PZ,
         "sink": K * rho_s * P,
+    }
+    return out, (H, P, PX, PZ, prm, Hf, wet, rho, rho_s, Hf2, Hf3, diffusion, diffusion_x,
+                 upwind)
+
+
+def film_jacobian_coefficients(parts, newton: bool = True) -> dict:
+    """The Jacobian's coefficients of :data:`FILM` and :data:`SINK` from the ``parts`` of
+    :func:`film_residual_coefficients` (``newton`` as :func:`film_coefficients`')."""
+    (H, P, PX, PZ, prm, Hf, wet, rho, rho_s, Hf2, Hf3, diffusion, diffusion_x,
+     upwind) = parts
+    d, s = prm["d"], prm.get("slip", 0.0)
+    ds, a, K = prm.get("ds", d), prm.get("couette", 1.0), prm["K"]
+    above = wet(H) if callable(wet) else wet
+    dD = 3.0 * rho * Hf2 + 2.0 * s * Hf       # the conductance's derivative in H
+    nt = 1.0 if newton else 0.0
+    nu_P, nu_H = 0.0, 0.0
+    if upwind is not None:
+        nu_D, nu_Hf = _streamline_derivatives(upwind)
+        nu_P = nu_D * d * Hf3                     # dnu/dP through D
+        nu_H = nu_Hf + nu_D * dD                  # dnu/dHf, directly and through D
+    return {
         # dF/dP: D grad dp + dp (d Hf^3 grad P - d Hf e_X) + K (1 + 2 ds P) dp, with the
         # streamline diffusion in the X flux
         "jD": diffusion,

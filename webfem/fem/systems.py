@@ -19,8 +19,8 @@ import scipy.sparse as sp
 from . import forms
 from .fast import BasisData
 from .transfer import basis_matrices
-from .forms import (COUPLING, FILM, SINK, WEB, coupling_coefficients, film_coefficients,
-                    web_coefficients)
+from .forms import (COUPLING, FILM, SINK, WEB, coupling_coefficients,
+                    film_jacobian_coefficients, film_residual_coefficients, web_coefficients)
 from .weakform import FastForm, Part, Space, coefficient, skfem_forms
 
 __all__ = ["LineSystem", "FilmSystem", "width_load", "cell_lengths"]
@@ -44,24 +44,35 @@ def width_load(T: dict, Pq: np.ndarray, width: float) -> np.ndarray:
 
 class _LastState:
     """The coefficients of the last state asked for: Newton asks for the Jacobian at the
-    state whose residual its line search has just evaluated."""
+    state whose residual its line search has just evaluated. The residual's coefficients
+    are computed first, the Jacobian's (per ``newton``) from their parts only when a
+    Jacobian is asked for: most residuals (line-search trials, chord steps) never get one."""
 
     def __init__(self):
         self._key = None
         self._value = None
+        self._full: dict = {}
 
-    def get(self, u, args, newton, compute):
+    def get(self, u, args, compute, newton=None, extend=None):
+        """The residual's coefficients at ``u`` (``compute()``: ``(values, parts)``), or with
+        ``newton`` (True/False) every coefficient: those merged with ``extend(parts,
+        newton)``'s, one dict per part."""
         key = self._key
-        if key is not None and key[1] == args and key[2] == newton \
-                and np.array_equal(key[0], u):
-            return self._value
-        self._value = compute()
-        self._key = (np.array(u, float, copy=True), args, newton)
-        return self._value
+        if key is None or key[1] != args or not np.array_equal(key[0], u):
+            self._value = compute()
+            self._key = (np.array(u, float, copy=True), args)
+            self._full = {}
+        values, parts = self._value
+        if newton is None:
+            return values
+        if newton not in self._full:
+            self._full[newton] = [{**v, **j} for v, j in zip(values, extend(parts, newton))]
+        return self._full[newton]
 
     def forget(self) -> None:
         """Let the kept coefficients go (computed again if asked for)."""
         self._key = self._value = None
+        self._full = {}
 
 
 class LineSystem:
@@ -95,31 +106,47 @@ class LineSystem:
                      geometry=None, hx=None) -> dict:
         """Every coefficient of the 1-D system at points x (in cells of lengths ``hx``) from
         the state there."""
+        out, parts = self._residual_coefficients(x, P, dP, W, dW, ddW, prm, geometry, hx)
+        return {**out, **film_jacobian_coefficients(parts, newton)}
+
+    @staticmethod
+    def _residual_coefficients(x, P, dP, W, dW, ddW, prm, geometry=None, hx=None):
+        """:meth:`coefficients` without the film's Jacobian coefficients, and their parts
+        (:func:`webfem.fem.forms.film_residual_coefficients`)."""
         args = prm.as_form_args()
         D, chi = geometry if geometry is not None else (forms.departure(x, prm.beta),
                                                         forms.in_wrap(x, prm.beta))
-        return {**film_coefficients(W + D, P, dP, 0.0, args, newton, hx),
-                **web_coefficients(x, W, dW, ddW, args, (D, chi)),
-                **coupling_coefficients(P, 1.0)}
+        film, parts = film_residual_coefficients(W + D, P, dP, 0.0, args, hx)
+        return {**film, **web_coefficients(x, W, dW, ddW, args, (D, chi)),
+                **coupling_coefficients(P, 1.0)}, parts
 
-    def values(self, u, prm, newton: bool = True) -> list[dict]:
-        """The coefficients of each part at the state ``u``."""
+    def values(self, u, prm, newton: bool | None = True) -> list[dict]:
+        """The coefficients of each part at the state ``u`` (``newton`` None: the
+        residual's only)."""
         def compute():
             b = self.b
             P, dP = b.interpolate(u, 0)
             W, dW, ddW = b.interpolate(u, 1, hess=True)
-            out = [self.coefficients(b.x, P, dP[0], W, dW[0], ddW, prm, newton,
-                                     self._geometry_at(b.x, prm.beta), self.hx)]
+            out, parts = self._residual_coefficients(b.x, P, dP[0], W, dW[0], ddW, prm,
+                                                     self._geometry_at(b.x, prm.beta),
+                                                     self.hx)
+            values, kept = [out], [parts]
             if self.s is not None:
                 Ps = self.s.interpolate(u, 0)[0]
                 # the sink's coefficients need the pressure only (the gap is not read)
-                out.append(film_coefficients(1.0, Ps, 0.0, 0.0, prm.as_form_args(),
-                                             newton))
-            return out
-        return self._last.get(u, prm.as_form_args(), bool(newton), compute)
+                sink, sink_parts = film_residual_coefficients(1.0, Ps, 0.0, 0.0,
+                                                              prm.as_form_args())
+                values.append(sink)
+                kept.append(sink_parts)
+            return values, kept
+
+        def extend(kept, newton):
+            return [film_jacobian_coefficients(parts, newton) for parts in kept]
+        return self._last.get(u, prm.as_form_args(), compute,
+                              None if newton is None else bool(newton), extend)
 
     def residual(self, u, prm) -> np.ndarray:
-        return self.fast.residual(self.values(u, prm))
+        return self.fast.residual(self.values(u, prm, None))
 
     def jacobian(self, u, prm, newton: bool = True) -> sp.csr_matrix:
         return self.fast.jacobian(self.values(u, prm, newton))
@@ -195,26 +222,36 @@ class FilmSystem:
             self._geometry = {beta: (kept[0], kept[1:])}
         return self._geometry[beta]
 
-    def _film_values(self, P, PX, PZ, wv, prm, newton):
+    def _film_values(self, P, PX, PZ, wv, prm, newton: bool | None = True):
+        """The film part's coefficients (``newton`` None: the residual's, with the parts of
+        the Jacobian's: ``(values, parts)``)."""
         T = self.T
         H = (T["M"] @ wv + self._geometry_at(prm.beta)[0]).reshape(np.shape(P)) \
             + self.groove
-        return {**film_coefficients(H, P, PX, PZ, prm.as_form_args(), newton, self.hx),
-                **coupling_coefficients(P, self.width)}
+        film, parts = film_residual_coefficients(H, P, PX, PZ, prm.as_form_args(), self.hx)
+        out = {**film, **coupling_coefficients(P, self.width)}
+        if newton is None:
+            return out, parts
+        return {**out, **film_jacobian_coefficients(parts, newton)}
 
-    def values(self, u, prm, newton: bool = True) -> list[dict]:
-        """The coefficients of the film's and the web's parts at the state ``u``."""
+    def values(self, u, prm, newton: bool | None = True) -> list[dict]:
+        """The coefficients of the film's and the web's parts at the state ``u``
+        (``newton`` None: the residual's only)."""
         def compute():
             f, w, nP = self.f, self.w, self.nP
             P, gP = f.interpolate(u[:nP])
             W, dW, ddW = w.interpolate(u[nP:], 0, hess=True)
-            return [self._film_values(P, gP[0], gP[1], u[nP:], prm, newton),
-                    web_coefficients(w.x, W, dW[0], ddW, prm.as_form_args(),
-                                     self._geometry_at(prm.beta)[1])]
-        return self._last.get(u, prm.as_form_args(), bool(newton), compute)
+            film, parts = self._film_values(P, gP[0], gP[1], u[nP:], prm, None)
+            return [film, web_coefficients(w.x, W, dW[0], ddW, prm.as_form_args(),
+                                           self._geometry_at(prm.beta)[1])], parts
+
+        def extend(parts, newton):
+            return [film_jacobian_coefficients(parts, newton), {}]
+        return self._last.get(u, prm.as_form_args(), compute,
+                              None if newton is None else bool(newton), extend)
 
     def residual(self, u, prm) -> np.ndarray:
-        return self.fast.residual(self.values(u, prm))
+        return self.fast.residual(self.values(u, prm, None))
 
     def jacobian(self, u, prm, newton: bool = True) -> sp.csr_matrix:
         J = self.fast.jacobian(self.values(u, prm, newton))

@@ -202,6 +202,19 @@ def _layout_of(space, ops: list, built: list) -> np.ndarray:
     return layout
 
 
+def _leads(group, ops) -> tuple[int, ...] | None:
+    """For a group of blocks of one field (test and trial), the index of the first block of
+    each test operator of ``ops`` where each has that operator on its trial side too (the
+    film's d/dX-d/dX, d/dZ-d/dZ and value-value blocks), else None."""
+    first = []
+    for o in ops:
+        i = next(i for i, b in enumerate(group) if b.op == o)
+        if group[i].trial_op != o:
+            return None
+        first.append(i)
+    return tuple(first)
+
+
 class FastForm:
     """The declarations of every :class:`Part` assembled over all elements at once into one
     system of ``n`` unknowns (one sparsity pattern: the film + web system of a mesh).
@@ -217,6 +230,10 @@ class FastForm:
     def __init__(self, parts, n: int):
         self.parts, self.n = list(parts), int(n)
         self._terms, self._groups, self._layouts, self._unit = [], [], [], {}
+        #: per part, the groups of one field whose first block of each test operator has
+        #: that operator on its trial side too: their index in the group, in the layout's
+        #: order of the operators (:meth:`blocks`)
+        self._leads = []
         pairs = []
         for part in self.parts:
             sp_ = part.spaces
@@ -239,6 +256,8 @@ class FastForm:
                 layouts[key] = (ops[key], _layout_of(sp_[key[0]], ops[key], built))
             self._groups.append(groups)
             self._layouts.append(layouts)
+            self._leads.append({key: _leads(group, ops[key]) for key, group in groups.items()
+                                if key[0] == key[1]})
             pairs += [(sp_[fi].dofs, sp_[fj].dofs) for fi, fj in groups]
         self.pattern = pattern_of(pairs, (self.n, self.n)) if pairs else None
 
@@ -287,9 +306,15 @@ class FastForm:
                                               for b, c in zip(group, coefs))]
                 if used:
                     slot = {o: i for i, o in enumerate(used)}
-                    trial, filled = None, set()
-                    for b, c in zip(group, coefs):
-                        if np.ndim(c) == 0:
+                    trial, filled, led = None, set(), ()
+                    lead = self._leads[k].get(key)
+                    if lead is not None and used == ops and all(np.ndim(coefs[i]) > 0
+                                                                for i in lead):
+                        # each test operator's first block in one product, the rest added
+                        trial = self._lead_terms(part, layout, [coefs[i] for i in lead])
+                        filled, led = set(ops), lead
+                    for i, (b, c) in enumerate(zip(group, coefs)):
+                        if np.ndim(c) == 0 or i in led:
                             continue
                         term = part.spaces[b.trial].ops[b.trial_op] * (c * part.dx)
                         if trial is None:
@@ -310,6 +335,26 @@ class FastForm:
                     total = piece if total is None else total + piece
                 out.append(total)
         return out
+
+    @staticmethod
+    def _lead_terms(part, layout, coefs) -> np.ndarray:
+        """The trial sides (element, trial function, test operator, point) of a group's
+        leading blocks (:func:`_leads`), each its operator times (coefficient x dx), in one
+        product: the layout holds those operators' values already, as (element, operator x
+        point, function). Why: filled one operator at a time, each product was written
+        into the trial array in runs of one element's points (9 values), and those strided
+        writes were most of the film's Jacobian assembly (the same products, so the same
+        bits)."""
+        ne, nq = np.shape(part.dx)
+        weights = np.empty((ne, 1, len(coefs), nq))
+        for s, c in enumerate(coefs):
+            np.multiply(c, part.dx, out=weights[:, 0, s, :])
+        # C order, as the contraction reads it (numpy would lay the product out like the
+        # transposed layout: another matrix product path, other bits)
+        trial = np.empty((ne, layout.shape[2], len(coefs), nq))
+        np.multiply(layout.transpose(0, 2, 1), weights.reshape(ne, 1, len(coefs) * nq),
+                    out=trial.reshape(ne, layout.shape[2], len(coefs) * nq))
+        return trial
 
     def jacobian(self, values) -> sp.csr_matrix:
         """The Jacobian from each part's coefficient arrays."""
