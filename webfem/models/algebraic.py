@@ -14,11 +14,11 @@ errors_between`, the estimate's own measure), times :data:`SAFETY`, bounds the i
 algebraic error in them (plus :data:`FLOOR`); the iterate is accepted where that bound is at
 most ``share`` x ``error_tol``. The iterate is read in full (:func:`~webfem.models.readout.
 read_out`: the answer's read-out, kept if accepted), ``u + du`` on the iterate's wrap
-quadrature (:func:`~webfem.models.readout.read_moved`, about half the price: no search
-for its jump crossings, no new tables of the basis functions; the crossings' moves bounded
-and added to mu's change), in full only where a quadrature point's gap crosses a jump. The bounds are added to the stated errors (:func:`stated`):
-the answer's twice (its error, and its share of the estimate's change), the coarser mesh's
-once.
+quadrature (:func:`~webfem.models.readout.read_moved`, about two thirds of the price: no
+search for its jump crossings, no new tables of the basis functions; the crossings' moves
+bounded and added to mu's change), in full only where a quadrature point's gap crosses a
+jump. The bounds are added to the stated errors (:func:`stated`): the answer's twice (its
+error, and its share of the estimate's change), the coarser mesh's once.
 
 Where it applies is decided in :func:`enabled` alone: Newton with the mesh error estimate
 on, ``tol`` left at its default (a ``tol`` the user sets is met strictly) and
@@ -52,8 +52,8 @@ FLOOR = 1e-9
 #: The readouts are called only where the correction's largest change of the web's node
 #: values (against sigma) and of the film pressure (against its largest value) is at most
 #: this times the limit: a cheap pre-test (the iterate's read-out and its corrected
-#: state's cost about ten chord steps: 4.5 + 2.2 ms at 11,117 unknowns against a
-#: residual's 0.64 ms and a triangular solve's 0.63 ms). It only skips the test: an
+#: state's cost about nine chord steps: 3.5 + 2.2 ms at 11,117 unknowns against a
+#: residual's 0.67 ms and a triangular solve's 0.63 ms). It only skips the test: an
 #: iterate it turns away takes the next step. On the 24-point
 #: speed sweep, every iterate asked about with its readouts printed (before this gate):
 #: the accepted corrections measured up to 1.6e-4 (bound 9.7e-7, at 40 m/s on 1,765
