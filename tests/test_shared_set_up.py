@@ -73,3 +73,8 @@ def test_read_out_kept_for_the_same_state():
     fresh = read_out(BASE, q, v, prm)
     assert fresh.h_center == other.h_center and fresh.mu == other.mu
     assert np.array_equal(fresh.h, other.h)
+    # a trial state read with keep=False (balanced stopping's corrected state, read in
+    # full) leaves the kept read-out as it was
+    trial = read_out(BASE, p, u, prm, keep=False)
+    assert trial is not other and trial.mu == first.mu
+    assert read_out(BASE, p, v.copy(), prm) is other

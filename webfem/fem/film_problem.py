@@ -159,7 +159,7 @@ class FoilBearing2D:
         self._mass, self._system, self._solver, self._lines = None, None, None, None
         #: the web basis at point sets asked for again (the nodes: refinement, admissibility
         #: and results), by the points' bytes; the last width average (film DOFs, result)
-        self._web_probes, self._average = LineProbes(self.wbasis), None
+        self._web_probes, self._average = LineProbes(self.wbasis), []
         #: the 1-D problem and state this problem started from (width continuation)
         self.line_start = None
         #: True: Newton tries the coupled system straight from its start (a solved state
@@ -200,7 +200,7 @@ class FoilBearing2D:
         factorisation plans it holds): built again if it is solved again. Why: a problem is
         kept for its nodes and state while the finer mesh carried over from it is solved,
         and its assembly held ~0.5 GB at 1.2e5 unknowns beside the finer one's. The web's
-        mass factorisation and the last width average (of the web's size and of the film's
+        mass factorisation and the last two width averages (of the web's size and of the film's
         DOFs) are kept: the result reads the film pressure of the released answer again,
         and building them again was 1 of the 3 mass factorisations of a continued sweep
         point (23 of 76 on the 24-point speed sweep)."""
@@ -276,11 +276,16 @@ class FoilBearing2D:
         (1/width) int P dZ onto the web's space (the same load vector the web sees)."""
         p = self._split(u)[0]
         # the results ask for the pressure of one state several times (fields, summary,
-        # admissibility): the projection is kept for the last film DOFs
-        if self._average is None or not np.array_equal(self._average[0], p):
-            Pq = interpolate_values(self.fbasis, p).ravel() * self.weight_q.ravel()
-            self._average = (p.copy(), self._mass_solve(width_load(self.T, Pq, self.width)))
-        return self._average[1].copy()
+        # admissibility): the projections of the last two film DOFs are kept (balanced
+        # stopping reads an iterate and its corrected state in turn, then the iterate again)
+        for i, (kept, average) in enumerate(self._average):
+            if np.array_equal(kept, p):
+                self._average.append(self._average.pop(i))
+                return average.copy()
+        Pq = interpolate_values(self.fbasis, p).ravel() * self.weight_q.ravel()
+        average = self._mass_solve(width_load(self.T, Pq, self.width))
+        self._average = self._average[-1:] + [(p.copy(), average)]
+        return average.copy()
 
     def land_average(self, u) -> np.ndarray:
         """Hermite DOFs of the film pressure averaged over the lands only (as
