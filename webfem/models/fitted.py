@@ -89,13 +89,13 @@ def coefficients(path: str | None = None) -> dict:
             "scalar_names": fit["scalar_names"]}
 
 
-#: The type the kernels' radial function and weight products are evaluated in
-#: (:class:`Stack`; the distances stay in float64): the kernels 1.55 times as fast as with
-#: float64 products (and blocks of 128), and the answers move by up to 1.9e-4 of webfem's
-#: error measures against float64 throughout (fitted variables: 4.8e-5), a thousandth of
-#: the smallest stated error, mostly through the gaps' kernel, whose weights cancel (sum
-#: |w phi| is 680 times |y| at the median); the stated errors are measured through it
-#: (docs/fit.md, "Speed").
+#: The type the kernels' distances' product, radial function and weight products are
+#: evaluated in (:class:`Stack`; the coordinates from the unit box's middle): the hold-out
+#: answers move by up to 7.5e-5, 1.3e-4, 6.0e-6 and 1.2e-6 of webfem's error measures
+#: (h_center, h_min, mu, contact share) against float64 throughout (fitted variables: the
+#: gaps' 3.1e-5, the pressures' 9.4e-4), under a thousandth of the smallest stated error,
+#: mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times |y| at
+#: the median); the stated errors are measured through it (docs/fit.md, "Speed").
 RADIAL = np.float32
 
 
