@@ -192,7 +192,7 @@ class Stack:
     each kernel to rounding, with the per-call costs paid once.
 
     ``radial``: the type the distances' product, the radial function (the Matern kernel's
-    sqrt, exp and polynomial) and the weight products are evaluated in. In float32 the
+    sqrt, base-2 exponential and polynomial) and the weight products are evaluated in. In float32 the
     coordinates are taken from the unit box's middle (:data:`SHIFT`): the product's three
     terms, which cancel where a point is near a centre, are then 4 times smaller (up to
     1.3e3 with the profile's shortest length scale, 0.07), and so is their rounding (the
@@ -299,8 +299,8 @@ class Stack:
         return out
 
     def _radial(self, d2, r, e, phi):
-        """phi of the squared distances' product ``d2`` through the work arrays ``r`` (here
-        always ``d2`` itself) and ``e``."""
+        """phi of the squared distances' product ``d2`` (overwritten) through the work
+        arrays ``r`` (:meth:`evaluate` passes ``d2`` itself) and ``e``."""
         if self.kind == "gaussian":
             # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
             np.exp(d2, out=phi, dtype=self.radial, casting="unsafe")
