@@ -406,7 +406,7 @@ def test_the_stacked_kernels_are_each_kernel_side_by_side():
     for i in (0, 1, 33, 699):
         np.testing.assert_allclose(fast(x[i:i + 1])[0], fast(x)[i], rtol=1e-13, atol=1e-13)
     np.testing.assert_allclose(fast(x[30:40]), fast(x)[30:40], rtol=1e-13, atol=1e-13)
-    # at a centre (r = 0, where the distances' rounding may fall below 0) the lifted square
+    # at a centre (r = 0, where the distances' rounding may fall below 0) the clamped square
     # gives the kernel's value, not a NaN
     c = kernels[1].centres
     np.testing.assert_allclose(fast(c), np.column_stack([k(c) for k in kernels]), rtol=0,

@@ -22,6 +22,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
@@ -39,8 +40,12 @@ ONE_THREAD_FROM = 64
 #: stay in the core's cache. In float32 every block's products take this many rows (a lone
 #: point's padded to it), so it also sets the smallest evaluation's cost (measured on 2048
 #: points, one thread, the shipped fit: 2.2-2.5 us a point at 32, 2.1-2.5 at 48 and 64,
-#: 2.8-2.9 at 16 and 128).
+#: 2.8-2.9 at 16 and 128; again with the float64 distances and the views made once per
+#: call: 2.2 at 32, 2.4 at 48, 2.5 at 64, and a lone point 41, 53 and 65 us).
 CHUNK = 32
+#: Where :class:`Stack`'s float32 coordinates start: the unit box's middle (their squares'
+#: rounding, which the distances' product carries, 4 times smaller than from its corner).
+SHIFT = 0.5
 
 
 @lru_cache(maxsize=1)
@@ -90,8 +95,15 @@ def thin_plate(A: np.ndarray, B: np.ndarray, scales: np.ndarray) -> np.ndarray:
 KINDS = {"matern52": matern52, "gaussian": gaussian, "cauchy": cauchy,
          "thin-plate": thin_plate}
 #: The kinds :class:`Stack` evaluates in one pass, with the factor its product carries:
-#: (sqrt5 r)^2 for the Matern kernel, -r^2 / 2 for the Gaussian.
-STACKED = {"matern52": 5.0, "gaussian": -0.5, "cauchy": 0.5}
+#: (sqrt5 r log2(e))^2 for the Matern kernel (its exponential taken in base 2: numpy's
+#: float32 exp2 measured 0.18 against exp's 0.32 us a point, and rounds to 1 ulp against
+#: exp's 2.4), -r^2 / 2 for the Gaussian.
+STACKED = {"matern52": 5.0 / math.log(2.0) ** 2, "gaussian": -0.5, "cauchy": 0.5}
+#: The Matern polynomial in q = sqrt5 r log2(e): 1 + sqrt5 r + 5 r^2 / 3 = LN2_3 (q^2 +
+#: MATERN_A q + MATERN_B), LN2_3 = ln(2)^2 / 3 going into the weights. Python floats: a
+#: numpy float64 would take the float32 passes to float64 (numpy's type promotion).
+_LN2 = math.log(2.0)
+MATERN_A, MATERN_B, LN2_3 = 3.0 / _LN2, 3.0 / _LN2 ** 2, _LN2 ** 2 / 3.0
 
 
 @dataclass(frozen=True)
@@ -179,11 +191,14 @@ class Stack:
     own columns; the outputs side by side, in the kernels' order. The same values as calling
     each kernel to rounding, with the per-call costs paid once.
 
-    ``radial``: the type the radial function (the Matern kernel's sqrt, exp and polynomial)
-    and the weight products are evaluated in. The distances' product stays in float64: its
-    three terms reach 1e3 where the distance is near 0, and float32's rounding of them moved
-    the fitted variables by 3e-3 (docs/fit.md, "Speed"). In float32 every block's products
-    take ``chunk`` rows, a short last block padded: BLAS then runs the same kernel on every
+    ``radial``: the type the distances' product, the radial function (the Matern kernel's
+    sqrt, base-2 exponential and polynomial) and the weight products are evaluated in. In float32 the
+    coordinates are taken from the unit box's middle (:data:`SHIFT`): the product's three
+    terms, which cancel where a point is near a centre, are then 4 times smaller (up to
+    1.3e3 with the profile's shortest length scale, 0.07), and so is their rounding (the
+    shipped fit's hold-out answers move by up to 1.3e-4 of webfem's error measures against
+    float64 throughout; docs/fit.md, "Speed"). In float32 every block's products take
+    ``chunk`` rows, a short last block padded: BLAS then runs the same kernel on every
     block, and a point's answer has the same bits alone, in any batch and at any place in
     it (a float32 product's rounding otherwise follows the block's shape: 1e-5 here)."""
 
@@ -197,15 +212,17 @@ class Stack:
         # kept to tell whether a fit still holds these kernels (fitted.predict)
         self.kernels = tuple(kernels)
         self.radial = np.dtype(radial)
-        # the Matern polynomial's 1/3 goes into the weights
-        scale = 3.0 if self.kind == "matern52" else 1.0
+        # the Matern polynomial's factor goes into the weights (_matern52)
+        scale = 1.0 / LN2_3 if self.kind == "matern52" else 1.0
+        self._shift = SHIFT if self.radial != np.float64 else 0.0
         cols, self._blocks, self._trends = [], [], []
         start = out = 0
         for k in kernels:
             inv2 = 1.0 / k.scales ** 2
-            cols.append(np.vstack([np.repeat(inv2[:, None], len(k.centres), axis=1),
-                                   -2.0 * (k.centres * inv2).T,
-                                   np.sum(k.centres ** 2 * inv2, axis=1)[None, :]]))
+            c = k.centres - self._shift
+            cols.append(np.vstack([np.repeat(inv2[:, None], len(c), axis=1),
+                                   -2.0 * (c * inv2).T,
+                                   np.sum(c ** 2 * inv2, axis=1)[None, :]]))
             _, _, w, t0, t1 = k._prepared
             self._blocks.append((slice(start, start + len(k.centres)),
                                  slice(out, out + w.shape[1]),
@@ -215,24 +232,10 @@ class Stack:
             start += len(k.centres)
             out += w.shape[1]
         # the product is the radial function's argument as it takes it
-        A = STACKED[self.kind] * np.hstack(cols)
-        if self.kind == "matern52" and self.radial != np.float64:
-            # the product's rounding may take a coincident point's square below 0, where
-            # the square root has no value: lift every square by a bound of that rounding
-            # (1e-10 here; a point outside the unit box is far from every centre), so the
-            # copy to the radial type needs no clamp (which cost as much again); phi moves
-            # by lift / 6 at most, far below float32's rounding
-            A[-1] += self._lift(A)
-        self._A = np.ascontiguousarray(A)
+        self._A = np.ascontiguousarray(STACKED[self.kind] * np.hstack(cols), self.radial)
         self.n_outputs = out
         # every output's mean, added once per block
         self._means = np.concatenate([b[3] for b in self._blocks])
-
-    @staticmethod
-    def _lift(A: np.ndarray) -> float:
-        """A bound of the float64 rounding of the squared distances' product x A (x^2, x, 1
-        side by side, x in the unit box): 4 (m + 1) eps times its terms' sum."""
-        return 4.0 * len(A) * np.finfo(float).eps * float(np.abs(A).sum(axis=0).max())
 
     def __call__(self, x: np.ndarray, chunk: int = CHUNK) -> np.ndarray:
         x = np.atleast_2d(np.asarray(x, float))
@@ -251,59 +254,74 @@ class Stack:
         # float32: the products on whole blocks of ``chunk`` rows (the class text), the
         # padding's rows 0
         c = chunk if f32 else min(chunk, n)
-        xx = np.zeros((-(-n // c) * c if f32 else n, 2 * x.shape[1] + 1))
-        np.multiply(x, x, out=xx[:n, :x.shape[1]])
-        xx[:n, x.shape[1]:-1] = x
+        m = x.shape[1]
+        xx = np.zeros((-(-n // c) * c if f32 else n, 2 * m + 1), self.radial)
+        xs = x - self._shift
+        np.multiply(xs, xs, out=xx[:n, :m], casting="same_kind")
+        xx[:n, m:-1] = xs
         xx[:, -1] = 1.0
         # one set of work arrays per call, reused by every block (a call is one thread's:
-        # fitted.predict runs blocks of points on several)
-        d2 = np.empty((c, self._A.shape[1]))
-        r = np.empty(d2.shape, self.radial) if f32 else d2
+        # fitted.predict runs blocks of points on several); the squares are the radial
+        # function's work array
+        d2 = r = np.empty((c, self._A.shape[1]), self.radial)
         # phi's rows past a short last block keep an earlier block's values (or 0): finite
         e, phi = np.empty_like(r), np.zeros_like(r)
         o32 = np.empty((c, self.n_outputs), self.radial) if f32 else None
+        # a block costs about 14 numpy calls, 0.4 us a point of interpreter time (held under
+        # the GIL) against 1.7 of arithmetic: the full blocks' views are made once and
+        # every call's out is positional (0.1 us a point less, the same bits)
+        full = (d2, r, e, phi)
+        products = [(phi[:, cols], w, o32[:, outs]) for cols, outs, w, _ in self._blocks] \
+            if f32 else None
+        A, means, matmul, radial = self._A, self._means, np.matmul, self._radial
         for i in range(0, n, c):
             k = min(c, n - i)
             # the products take whole blocks in float32; the elementwise passes (the same
             # bits whatever the array's length) only the block's points: a lone point pays
             # the padding's products, not its radial functions
-            np.matmul(xx[i:i + (c if f32 else k)], self._A, out=d2[:c if f32 else k])
-            dk, rk, ek, phik = d2[:k], r[:k], e[:k], phi[:k]
-            if self.kind == "gaussian":
-                # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
-                np.exp(dk, out=phik, dtype=self.radial, casting="unsafe")
-            elif self.kind == "cauchy":
-                dk += 1.0                    # 1 + r^2/2
-                np.reciprocal(dk, out=phik)
-            else:
-                self._matern52(dk, rk, ek, phik)
             if f32:
+                matmul(xx[i:i + c], A, d2)
+                radial(*(full if k == c else (d2[:k], d2[:k], e[:k], phi[:k])))
                 # the whole block, whatever k: the product's shape is the block's
-                for cols, outs, w, _ in self._blocks:
-                    np.matmul(phi[:, cols], w, out=o32[:, outs])
-                np.add(o32[:k], self._means, out=out[i:i + k])
+                for p, w, o in products:
+                    matmul(p, w, o)
+                np.add(o32 if k == c else o32[:k], means, out[i:i + k])
             else:
+                dk, phik = d2[:k], phi[:k]
+                matmul(xx[i:i + k], A, dk)
+                radial(dk, dk, e[:k], phik)
                 for cols, outs, w, t0 in self._blocks:
                     o = out[i:i + k, outs]
-                    np.matmul(phik[:, cols], w, out=o)
+                    matmul(phik[:, cols], w, o)
                     o += t0
             for outs, t1 in self._trends:    # a fit without a trend (the shipped one) skips it
                 out[i:i + k, outs] += x[i:i + k] @ t1
         return out
 
+    def _radial(self, d2, r, e, phi):
+        """phi of the squared distances' product ``d2`` (overwritten) through the work
+        arrays ``r`` (:meth:`evaluate` passes ``d2`` itself) and ``e``."""
+        if self.kind == "gaussian":
+            # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
+            np.exp(d2, out=phi, dtype=self.radial, casting="unsafe")
+        elif self.kind == "cauchy":
+            d2 += 1.0                    # 1 + r^2/2
+            np.reciprocal(d2, out=phi)
+        else:
+            self._matern52(d2, r, e, phi)
+
     @staticmethod
     def _matern52(d2, r, e, phi):
-        """phi = 3 (1 + r + r^2/3) e^-r of d2 = r^2, through r and e (the radial type; d2
-        is r itself in float64, clamped here, else lifted above 0 by :meth:`_lift`)."""
-        if r is d2:
-            # rounding may leave a coincident point's square a little below 0
-            np.abs(d2, out=d2)
-        else:
-            np.copyto(r, d2, casting="same_kind")
-        np.sqrt(r, out=r)
-        np.negative(r, out=e)
-        np.exp(e, out=e)
-        np.add(r, 3.0, out=phi)              # the 1/3 is in the weights
-        phi *= r
-        phi += 3.0
-        phi *= e
+        """phi = (q^2 + MATERN_A q + MATERN_B) 2^-q of d2 = q^2 (q = sqrt5 r log2(e):
+        the kernel over :data:`LN2_3`, which is in the weights), through r (for q; ``r``
+        may be ``d2`` itself, as :meth:`evaluate` passes it) and e."""
+        # rounding may leave a coincident point's square a little below 0 (|.| is as
+        # good: within the rounding)
+        np.abs(d2, r)
+        np.sqrt(r, r)
+        np.negative(r, e)
+        np.exp2(e, e)
+        np.add(r, MATERN_A, phi)
+        np.multiply(phi, r, phi)
+        np.add(phi, MATERN_B, phi)
+        np.multiply(phi, e, phi)

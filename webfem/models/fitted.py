@@ -89,13 +89,13 @@ def coefficients(path: str | None = None) -> dict:
             "scalar_names": fit["scalar_names"]}
 
 
-#: The type the kernels' radial function and weight products are evaluated in
-#: (:class:`Stack`; the distances stay in float64): the kernels 1.55 times as fast as with
-#: float64 products (and blocks of 128), and the answers move by up to 1.9e-4 of webfem's
-#: error measures against float64 throughout (fitted variables: 4.8e-5), a thousandth of
-#: the smallest stated error, mostly through the gaps' kernel, whose weights cancel (sum
-#: |w phi| is 680 times |y| at the median); the stated errors are measured through it
-#: (docs/fit.md, "Speed").
+#: The type the kernels' distances' product, radial function and weight products are
+#: evaluated in (:class:`Stack`; the coordinates from the unit box's middle): the hold-out
+#: answers move by up to 7.5e-5, 1.3e-4, 6.0e-6 and 1.2e-6 of webfem's error measures
+#: (h_center, h_min, mu, contact share) against float64 throughout (fitted variables: the
+#: gaps' 3.1e-5, the pressures' 9.4e-4), under a thousandth of the smallest stated error,
+#: mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times |y| at
+#: the median); the stated errors are measured through it (docs/fit.md, "Speed").
 RADIAL = np.float32
 
 
@@ -170,19 +170,39 @@ def predict(G: np.ndarray, fit: dict | None = None, *,
             return _predict(G, fit, stack)
     starts = range(0, n, BLOCK)
     n_threads = min(n_threads or threads(), len(starts))
+    # every block writes its rows of the answer in place: concatenating the blocks' own
+    # arrays afterwards cost 0.19 us a point (a second pass, and the new pages' faults)
+    out = _answer(n, fit)
     # every block's BLAS on one thread: the blocks are the parallel work
     with blas_one_thread():
         if n_threads == 1:
-            parts = [_predict(G[i:i + BLOCK], fit, stack) for i in starts]
+            for i in starts:
+                _predict(G[i:i + BLOCK], fit, stack, _rows(out, i))
         else:
-            parts = list(_pool(n_threads).map(
-                lambda i: _predict(G[i:i + BLOCK], fit, stack), starts))
-    return {k: None if parts[0][k] is None else np.concatenate([p[k] for p in parts])
-            for k in parts[0]}
+            list(_pool(n_threads).map(
+                lambda i: _predict(G[i:i + BLOCK], fit, stack, _rows(out, i)), starts))
+    return out
 
 
-def _predict(G: np.ndarray, fit: dict, stack: Stack | None) -> dict[str, np.ndarray]:
-    """:func:`predict` of one block of points, BLAS threads left to the caller."""
+def _answer(n: int, fit: dict) -> dict[str, np.ndarray | None]:
+    """Empty arrays for :func:`predict`'s answer at ``n`` points (None where the fit has
+    no such quantity)."""
+    nodes, own = len(fg.NODES), bool(fit.get("scalar_names"))
+    return {"H": np.empty((n, nodes)), "P": np.empty((n, nodes)), "H_min": np.empty(n),
+            "s_min": np.empty(n), "region": np.empty(n, np.intp),
+            "H_center": np.empty(n) if own else None, "share": np.empty(n) if own else None}
+
+
+def _rows(out: dict, i: int) -> dict:
+    """The block of :data:`BLOCK` rows from ``i`` of an answer, as views to fill."""
+    return {k: None if a is None else a[i:i + BLOCK] for k, a in out.items()}
+
+
+def _predict(G: np.ndarray, fit: dict, stack: Stack | None,
+             out: dict | None = None) -> dict[str, np.ndarray]:
+    """:func:`predict` of one block of points, BLAS threads left to the caller; into
+    ``out`` (views of the whole answer's rows, :func:`_rows`) where given."""
+    out = _answer(len(G), fit) if out is None else out
     x = (fg.coordinates(G) - fit["lo"]) / (fit["hi"] - fit["lo"])
     n = len(fg.NODES)
     if stack is not None:    # the profile, then every scalar, side by side
@@ -197,14 +217,14 @@ def _predict(G: np.ndarray, fit: dict, stack: Stack | None) -> dict[str, np.ndar
     # the fit is the remainder over the physical baseline in the fit's gap variable,
     # log((H - H_c) / S + FLOOR) (fit_groups.gap_to_fit; the baseline is never below H_c):
     # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR), one exp, no log
-    H = np.exp(Y[:, :n])
+    H = np.exp(Y[:, :n], out=out["H"])
     E += fg.FLOOR_SIGMAS
     H *= E
     H -= fg.FLOOR_SIGMAS
     H *= S[:, None]
     H += H_c[:, None]
     H_low = H.min(axis=1)
-    H_center = share = None
+    out["P"][...] = Y[:, n:2 * n]
     if fit.get("scalar_names"):
         # the quantities fitted on their own, the gaps in a variable without a floor
         # (fit_groups.gap_to_asinh): measured better than the profile's values on the
@@ -212,17 +232,17 @@ def _predict(G: np.ndarray, fit: dict, stack: Stack | None) -> dict[str, np.ndar
         # kernels run side by side (a Stack), else come from kernels of their own
         Ys = np.column_stack([Y[:, 2 * n + 2:]] + [k(x) for k in scalars])
         own = dict(zip(fit["scalar_names"], Ys.T))
-        H_center = fg.asinh_to_gap(own["h_center"] + np.arcsinh(E_center), S, H_c)
+        out["H_center"][...] = fg.asinh_to_gap(own["h_center"] + np.arcsinh(E_center), S, H_c)
         # capped by the profile's smallest node, as the profile's own minimum is
-        H_min = np.minimum(fg.asinh_to_gap(own["h_min"] + np.arcsinh(E_min), S, H_c), H_low)
-        share = np.clip(own["contact_share"], 0.0, 1.0)
+        np.minimum(fg.asinh_to_gap(own["h_min"] + np.arcsinh(E_min), S, H_c), H_low,
+                   out=out["H_min"])
+        np.clip(own["contact_share"], 0.0, 1.0, out=out["share"])
     else:
-        H_min = np.minimum(H_c + S * ((E_min + fg.FLOOR_SIGMAS) * np.exp(Y[:, 2 * n])
-                                      - fg.FLOOR_SIGMAS), H_low)
-    region = region_of(fit, H_min / S, G[:, fg.GROUPS.index("Dn")])
-    return {"H": H, "P": Y[:, n:2 * n], "H_min": H_min,
-            "s_min": np.clip(Y[:, 2 * n + 1], -0.5, 0.5), "region": region,
-            "H_center": H_center, "share": share}
+        np.minimum(H_c + S * ((E_min + fg.FLOOR_SIGMAS) * np.exp(Y[:, 2 * n])
+                              - fg.FLOOR_SIGMAS), H_low, out=out["H_min"])
+    out["region"][...] = region_of(fit, out["H_min"] / S, G[:, fg.GROUPS.index("Dn")])
+    np.clip(Y[:, 2 * n + 1], -0.5, 0.5, out=out["s_min"])
+    return out
 
 
 def region_of(fit: dict, ratio, Dn) -> np.ndarray:
