@@ -244,15 +244,20 @@ def stated_errors_text(rows: list[dict]) -> str:
 
 
 def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
-                        parameters, units: str = "si") -> Path:
+                        parameters, units: str = "si", case_values: dict | None = None,
+                        title: str = "base case") -> Path:
     """Panels: mu against roller speed with the threshold (the traction-loss speed is where
     each curve falls through it), then the traction-loss speed against each parameter, one
     line per model.
 
-    ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss); ``mu_curves``:
-    model -> (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
-    :data:`webfem.traction.CHART_PARAMETERS` (a key of :data:`webfem.units.ROLES` is drawn
-    in ``units``, with :func:`parameter_label`; others as they are, with their label).
+    ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss), and optionally
+    ``skipped`` (why a point has no answer: drawn as an x on the panel's floor and counted
+    in a note, so a gap is not read as "no loss in range"); ``mu_curves``: model ->
+    (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
+    :func:`webfem.traction.chart_parameters` (a key of :data:`webfem.units.ROLES` is drawn
+    in ``units``, with :func:`parameter_label`; others as they are, with their label);
+    ``case_values``: key -> the case's own value, marked on its panel; ``title``: the first
+    panel's (the case the curves are of).
     """
     parameters = list(parameters)
     speed = unit_label("speed", units)
@@ -265,20 +270,49 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
     ax.axhline(mu_min, color="k", lw=0.8, ls="--", label=f"mu_min = {mu_min:g}")
     ax.set_xlabel(f"roller speed U_r [{speed}]")
     ax.set_ylabel("mu [-]")
-    ax.set_title("base case", fontsize=9)
+    ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="best")
+    case_values = case_values or {}
     for ax, (key, label, *_) in zip(axes[1:], parameters):
+        role = ROLES.get(key)
+        # a point without a speed is marked on the panel's edge, so a gap is never read as
+        # one thing when it is another: ^ top (mu stays above mu_min at every speed
+        # scanned: the loss is faster), v floor (mu never reaches it: no traction to lose),
+        # x floor (no answer at all)
+        marks = {"^": [], "v": [], "x": []}
         for model in dict.fromkeys(r["model"] for r in rows):
             sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
-            ax.plot(display_values([r["value"] for r in sel], ROLES.get(key), units),
-                    display_values([r["speed"] for r in sel], "speed", units), "o-",
-                    label=model, ms=3)
+            line, = ax.plot(display_values([r["value"] for r in sel], role, units),
+                            display_values([r["speed"] for r in sel], "speed", units), "o-",
+                            label=model, ms=3)
+            for r in sel:
+                if r.get("skipped"):
+                    marks["x"].append((r["value"], "C3"))
+                elif r["speed"] is None:
+                    above = _f(r, "mu_peak") >= mu_min
+                    marks["^" if above else "v"].append((r["value"], line.get_color()))
+        for marker, points in marks.items():
+            for value, color in points:
+                ax.plot(display_values(value, role, units)[0], 1.0 if marker == "^" else 0.0,
+                        marker, color=color, ms=6, mew=1.5, clip_on=False,
+                        transform=ax.get_xaxis_transform())
+        if key in case_values:
+            ax.axvline(display_values(case_values[key], role, units)[0], color="0.5", lw=0.8,
+                       ls=":", label="this case")
         ax.set_xlabel(parameter_label(key, units) if key in ROLES else label)
         ax.set_ylabel(f"traction-loss speed [{speed}]")
+        notes = []
         if key == "web.width" and any(r["model"] == "fe1d" for r in rows):
-            ax.annotate("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
-                        "the width never enters it", (0.03, 0.97), xycoords="axes fraction",
-                        ha="left", va="top", fontsize=6.5, color="0.3")
+            notes.append("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
+                         "the width never enters it")
+        words = {"^": "^ top: mu above mu_min at every speed scanned",
+                 "v": "v floor: mu below mu_min at every speed scanned",
+                 "x": "x floor: no answer (see the command's message)"}
+        notes += [f"{words[m]} ({len(p)})" for m, p in marks.items() if p]
+        if notes:
+            # above the panel, where constrained layout makes room: inside it a note hid
+            # the points it explains
+            ax.set_title("\n".join(notes), fontsize=6.5, color="0.3", loc="left")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(f"Roller speed at which mu falls below {mu_min:g}", fontsize=10)
