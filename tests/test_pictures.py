@@ -151,3 +151,49 @@ def test_stored_meshes_say_what_their_coordinates_mean(tmp_path):
     data = read_field_data(web)
     assert any(k.startswith("X = arc from the wrap centre [m]") for k in data)
     assert data["wrap edges at X = -+0.02 m (R B / 2)"] == 0.02
+
+
+def _idler_figure(monkeypatch, tmp_path, margins, speeds=None):
+    """The idler chart of a curve with these margins: its right panel's y limits, its
+    legend's texts, and the boxes of its words (measured before the save closes it)."""
+    from webfem.idler import MarginCurve
+    from webfem.io import idler_chart as module
+
+    n = len(margins)
+    speeds = speeds or tuple(np.linspace(1.0, 10.0, n))
+    curve = MarginCurve("fe1d", speeds, (1.25,) * n, tuple(1.25 * m for m in margins),
+                        tuple(margins), (0.0,) * n, (True,) * n)
+    seen = {}
+    real = module.save_figure
+
+    def keep(fig, path):
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        b = fig.axes[1]
+        seen.update(ylim=b.get_ylim(), legend=[t.get_text() for t in b.get_legend().texts]
+                    if b.get_legend() else [],
+                    words={t.get_text(): t.get_window_extent(renderer) for t in b.texts})
+        return real(fig, path)
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    module.idler_chart(curve, tmp_path / "i.png")
+    return seen
+
+
+def test_idler_chart_shows_margins_far_below_its_floor(monkeypatch, tmp_path):
+    """The new-user trial's PET idler: margins 1e-16 to 1e-89 lay below the axis (1e-4) and
+    no mark said so. Now they sit on the floor (at most six decades below the slip line)
+    as triangles a legend explains with the smallest margin; a margin within the floor is
+    drawn where it is (the axis reaches it); the words never overlap."""
+    seen = _idler_figure(monkeypatch, tmp_path, [9.3e-17, 1e-30, 3.2e-42, 5.3e-89])
+    assert seen["ylim"][0] == pytest.approx(1e-6)
+    assert any("below 1e-06" in t and "5.3e-89" in t for t in seen["legend"])
+    words = seen["words"]
+    assert "slips at every speed shown" in words
+    boxes = list(words.values())
+    for i, one in enumerate(boxes):
+        for other in boxes[i + 1:]:
+            assert not one.overlaps(other), list(words)
+    seen = _idler_figure(monkeypatch, tmp_path, [8.0, 2.0, 0.5, 8.4e-5])
+    assert seen["ylim"][0] < 8.4e-5 and seen["legend"] == []
+    assert any(t.startswith("slips above") for t in seen["words"])
