@@ -153,6 +153,38 @@ def test_stored_meshes_say_what_their_coordinates_mean(tmp_path):
     assert data["wrap edges at X = -+0.02 m (R B / 2)"] == 0.02
 
 
+def test_sweep_chart_draws_a_level_that_moves_as_a_curve_and_its_labels_clear(
+        tmp_path, monkeypatch):
+    """The new-user trial's newsprint tension sweep: h_c falls with the tension (8.65 to
+    1.12 um), and a flat line per point's h_c stacked four labels over the curves at the
+    lower right. A level that moves along a series is one curve named in the legend; the
+    constant 3 sigma keeps its one label, at the left end here: every gap ends at the right
+    on the 3 sigma line, where the label would cover them."""
+    from webfem.io import charts
+    seen = {}
+    real_save = charts._save
+
+    def keep(fig, target):
+        fig.canvas.draw()
+        seen["texts"] = [t.get_text() for a in fig.axes for t in a.texts]
+        seen["sides"] = [t.get_ha() for a in fig.axes for t in a.texts]
+        seen["legend"] = [t.get_text() for t in fig.legends[0].texts]
+        return real_save(fig, target)
+
+    monkeypatch.setattr(charts, "_save", keep)
+    data = []
+    for label, scale in (("wrap 120", 1.0), ("wrap 60", 1.05)):
+        for T, hc in zip((100.0, 200.0, 300.0, 500.0), (8.65e-6, 5.16e-6, 3.33e-6, 1.12e-6)):
+            data.append({"series": label, "parameter": "web.tension", "value": T,
+                         "model": "fe1d", "mu": T / 1e4, "h_center": scale * 6.2e-3 / T,
+                         "h_inlet": scale * 6.6e-3 / T, "h_outlet": scale * 6e-3 / T,
+                         "converged": True, "h_c": hc, "sigma": 4e-6})
+    sweep_chart(data, tmp_path / "news.png")
+    assert not any(t.startswith("h_c =") for t in seen["texts"])
+    assert seen["texts"] == ["3 sigma = 12.00 um"] and seen["sides"] == ["left"]
+    assert "h_c (contact gap): moves with the parameter" in seen["legend"]
+
+
 def _idler_figure(monkeypatch, tmp_path, margins, speeds=None):
     """The idler chart of a curve with these margins: its right panel's y limits, its
     legend's texts, and the boxes of its words (measured before the save closes it)."""

@@ -110,11 +110,35 @@ def needs_markers(values) -> bool:
                                 rtol=0.05))
 
 
+def _crowding(ax, boxes, left: bool) -> int:
+    """How many samples of the lines drawn on ``ax``'s figure fall inside the label
+    ``boxes`` (``(width, bottom, top)`` in pixels) set against ``ax``'s left or right edge:
+    how much of the data labels there would cover."""
+    edge = ax.get_window_extent()
+    count = 0
+    for axes in ax.figure.axes:
+        for line in axes.get_lines():
+            xy = line.get_xydata()
+            if not line.get_visible() or len(xy) == 0:
+                continue
+            px = line.get_transform().transform(xy)
+            px = px[np.isfinite(px).all(axis=1)]
+            if len(px) >= 2:    # the segments between points cover the data too
+                t = np.linspace(0.0, 1.0, 24)[:, None]
+                px = np.concatenate([a + t * (b - a) for a, b in zip(px[:-1], px[1:])])
+            for width, bottom, top in boxes:
+                x0, x1 = (edge.x0, edge.x0 + width) if left else (edge.x1 - width, edge.x1)
+                count += int(np.sum((px[:, 0] >= x0) & (px[:, 0] <= x1)
+                                    & (px[:, 1] > bottom) & (px[:, 1] < top)))
+    return count
+
+
 def _level_labels(ax, levels: dict, unit: str = "um") -> None:
     """Draw the regime levels on the gap axis ``ax``: ``levels`` maps a gap [``unit``] to
-    ``(name, series labels)``. Each distinct value gets one label at the axis' right end,
-    naming the series when not all share it; labels closer than a text line are pushed
-    apart (with a thin leader) so none prints on top of another."""
+    ``(name, series labels)``. Each distinct value gets one label, naming the series when
+    not all share it; labels closer than a text line are pushed apart (with a thin leader)
+    so none prints on top of another; they sit at the axis's right end, or at its left
+    where they would cover less than half as much of the drawn lines."""
     everyone = set().union(*(who for _, who in levels.values())) if levels else set()
     fig = ax.figure
     fig.canvas.draw()   # the axis limits and pixel scale are final only after a draw
@@ -127,10 +151,20 @@ def _level_labels(ax, levels: dict, unit: str = "um") -> None:
         at = max(y, placed[-1][2] + step) if placed else y
         whose = "" if who == everyone else f" ({', '.join(sorted(who))})"
         placed.append((level, f"{name} = {level_text(level)} {unit}{whose}", at, y))
+    if not placed:
+        return
+    # each label's box: about 0.55 em a character wide, from just above its level line
+    # (the line itself is not covered) to the next line of text
+    em = 7.0 * fig.dpi / 72.0
+    boxes = [(0.55 * em * len(text) + 6, at + 2, at + step) for _, text, at, _ in placed]
+    # the right end unless the left is clearly clearer: a label does not jump sides
+    # between two charts alike for a line or two
+    left = 2 * _crowding(ax, boxes, left=True) < _crowding(ax, boxes, left=False)
     for level, text, at, y in placed:
-        ax.annotate(text, (1.0, level), xycoords=("axes fraction", "data"),
-                    xytext=(-3, 1.5 + (at - y) * 72.0 / fig.dpi), textcoords="offset points",
-                    ha="right", va="bottom", fontsize=7, color="0.25",
+        ax.annotate(text, (0.0 if left else 1.0, level), xycoords=("axes fraction", "data"),
+                    xytext=(3 if left else -3, 1.5 + (at - y) * 72.0 / fig.dpi),
+                    textcoords="offset points", ha="left" if left else "right", va="bottom",
+                    fontsize=7, color="0.25",
                     bbox=dict(fc="white", ec="none", alpha=0.8, pad=0.3),
                     arrowprops=dict(arrowstyle="-", color="0.6", lw=0.5) if at > y else None)
 
@@ -167,7 +201,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     ax2 = ax.twinx()
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     marker = "o" if needs_markers(xs(rows)) else None
-    levels = {}
+    levels, varying = {}, set()
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
         good = [r for r in sel if r.get("converged") is True]
@@ -195,10 +229,18 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
             for key, name, dash in _GAP_STYLES:
                 ax2.plot(rU, gaps(ref, key), linestyle=dash, color=colour, lw=0.6, alpha=0.7)
         for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
-            for r in good:
-                if np.isfinite(_f(r, key)):
-                    value = float(level_text(factor * float(gaps([r], key)[0])))
-                    levels.setdefault(value, (name, set()))[1].add(str(label))
+            here = [(x, float(level_text(factor * float(gaps([r], key)[0]))))
+                    for x, r, k in zip(U, sel, ok) if k and np.isfinite(_f(r, key))]
+            if len({v for _, v in here}) > 1:
+                # a level that moves with the swept parameter (h_c with the tension) is a
+                # curve: a flat line per point's value across the whole axis would claim
+                # levels that hold at one point only
+                ax2.plot([x for x, _ in here], [v for _, v in here], color="0.45", lw=0.9,
+                         ls="-.", zorder=1)
+                varying.add(name)
+                continue
+            for _, value in here:
+                levels.setdefault(value, (name, set()))[1].add(str(label))
     if log_x is None:
         log_x = log_spaced([r["value"] for r in rows])
     if log_x:
@@ -217,6 +259,10 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     styles = [(Line2D([], [], color="k", lw=1.1 if m == models[0] else 0.6, linestyle=dash),
                f"gap h {name} ({m}{'' if m == models[0] else ', thin'})")
               for m in models for _, name, dash in _GAP_STYLES]
+    meaning = {"h_c": "h_c (contact gap)", "3 sigma": "3 sigma (fluid above)"}
+    styles += [(Line2D([], [], color="0.45", lw=0.9, ls="-."),
+                f"{meaning[name]}: moves with the parameter")
+               for name in ("h_c", "3 sigma") if name in varying]
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
                loc="outside right upper")
     _level_labels(ax2, levels, thin)
