@@ -229,3 +229,18 @@ def test_idler_chart_shows_margins_far_below_its_floor(monkeypatch, tmp_path):
     seen = _idler_figure(monkeypatch, tmp_path, [8.0, 2.0, 0.5, 8.4e-5])
     assert seen["ylim"][0] < 8.4e-5 and seen["legend"] == []
     assert any(t.startswith("slips above") for t in seen["words"])
+
+
+def test_idler_table_says_it_slips_all_along_when_it_slips_at_the_lowest_speed():
+    """Slipping at the lowest speed answered is no onset: the PET idler's table said 'slips
+    above about 1 m/s', as if it held below."""
+    from webfem.cli.idler import _table
+    from webfem.idler import MarginCurve
+
+    def text(margins):
+        n = len(margins)
+        return _table(MarginCurve("fe1d", tuple(np.linspace(1.0, 10.0, n)), (1.25,) * n,
+                                  tuple(1.25 * m for m in margins), tuple(margins),
+                                  (0.0,) * n, (True,) * n), "si")
+    assert "slips at every speed from 1 m/s" in text([1e-16, 1e-30, 1e-42])
+    assert "slips above about" in text([3.0, 2.0, 0.5])
