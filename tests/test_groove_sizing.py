@@ -265,3 +265,42 @@ def test_cli_refuses_bad_values_before_creating_the_folder(calls, tmp_path, caps
         assert main(args) == 2
         assert words in capsys.readouterr().err and not out.exists()
     assert calls == []
+
+
+def test_groove_chart_of_one_speed_keeps_its_labels_on_the_canvas(tmp_path, monkeypatch):
+    """The new-user trial's one-speed map: the y axis names mu and what it is, and the
+    legend, the axis labels and the tick labels lie inside the canvas (the legend was cut
+    at both edges, the y label and the ticks' first digits off the left edge); a design
+    without an answer does not collapse the layout."""
+    from webfem.io import groove_charts
+
+    designs = [gs.GrooveDesign(25.0, p, p * (1 - lf), 3e-4, lf, mu, 3e-6, 2 * mu, True,
+                               mu >= 0.2) for p, lf, mu in
+               [(1e-3, 0.6, 0.485), (1e-3, 0.85, 0.469), (3e-3, 0.6, 0.457),
+                (3e-3, 0.85, 0.414)]]
+    designs.append(gs.GrooveDesign(25.0, 3e-3, 1.5e-3, 3e-4, 0.5, None, None, None, False,
+                                   False, "not converged"))
+    seen = {}
+    real = groove_charts.save_figure
+
+    def keep(fig, path):
+        # measured before the save closes the figure
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        ax = fig.axes[0]
+        lo, hi = ax.get_ylim()
+        shown = [t for t, y in zip(ax.get_yticklabels(), ax.get_yticks()) if lo <= y <= hi]
+        parts = [fig.legends[0], ax.yaxis.label, ax.xaxis.label, *shown]
+        seen.update(ylabel=ax.get_ylabel(), width=ax.get_position().width, canvas=fig.bbox,
+                    boxes=[(p, p.get_window_extent(renderer)) for p in parts])
+        return real(fig, path)
+
+    monkeypatch.setattr(groove_charts, "save_figure", keep)
+    groove_charts.groove_chart(designs, 0.2, tmp_path / "g.png",
+                               gs.best_designs(designs))
+    assert "mu" in seen["ylabel"] and "friction coefficient" in seen["ylabel"]
+    canvas = seen["canvas"]
+    for part, box in seen["boxes"]:
+        assert canvas.x0 - 1 <= box.x0 and box.x1 <= canvas.x1 + 1, part
+        assert canvas.y0 - 1 <= box.y0 and box.y1 <= canvas.y1 + 1, part
+    assert seen["width"] > 0.5      # the panel is not squeezed away

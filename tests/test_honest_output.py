@@ -73,3 +73,39 @@ def test_plot_under_auto_draws_what_the_chosen_model_has(tmp_path, capsys):
     assert main(["solve", "idler", "--model", "fitted", "--plot", "--vtu",
                  str(tmp_path / "v4")]) == 2
     assert not (tmp_path / "v4").exists()
+
+
+def _regime_line(**changes):
+    """describe()'s regime lines for the base case's closed-form answer with ``changes``
+    to its summary."""
+    import dataclasses
+
+    from webfem.describe import regime_text
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = webfem.solve(webfem.Case(), model="closed-form")
+    return regime_text(dataclasses.replace(result.summary, **changes), result.case)
+
+
+def test_regime_words_name_the_gap_and_the_contact_load_apart():
+    """The new-user trial: a grooved PET idler printed 'regime fluid (... fluid 1.00)' and,
+    further down, 'contact carries 5.8 %'; a foil printed h_c = 2.22 um 'boundary below' over
+    3 sigma = 0.600 um 'fluid above'. The regime is the paper's label by the gap; the
+    contact model's load share is said beside it where they disagree, and where h_c lies
+    above 3 sigma the bands say there is no mixed one."""
+    text = _regime_line(regime="fluid", h_c=0.938e-6, sigma=0.1413e-6, share_boundary=0.0,
+                        share_mixed=0.0, share_fluid=1.0, contact_share=0.058)
+    assert "regime fluid by the gap" in text and "no mixed band" in text
+    assert "asperities carry 5.8 % of the wrap load" in text
+    assert "mu follows this load share" in text      # the default "loads" friction
+    plain = _regime_line()        # the base case: mixed, h_c 4.94 um below 3 sigma 12 um
+    assert "mixed up to 3 sigma" in plain and "asperities carry" not in plain
+    dry = _regime_line(regime="fluid", contact_share=0.001)   # below CONTACT_NOTED
+    assert "asperities carry" not in dry
+
+
+def test_film_picture_level_words_agree_when_h_c_is_above_3_sigma():
+    from webfem.describe import level_words
+    assert level_words(2.22e-6, 0.2e-6) == ("boundary below, fluid above",
+                                            "no mixed band: below h_c")
+    assert level_words(4.94e-6, 4e-6) == ("boundary below", "fluid above")

@@ -151,3 +151,96 @@ def test_stored_meshes_say_what_their_coordinates_mean(tmp_path):
     data = read_field_data(web)
     assert any(k.startswith("X = arc from the wrap centre [m]") for k in data)
     assert data["wrap edges at X = -+0.02 m (R B / 2)"] == 0.02
+
+
+def test_sweep_chart_draws_a_level_that_moves_as_a_curve_and_its_labels_clear(
+        tmp_path, monkeypatch):
+    """The new-user trial's newsprint tension sweep: h_c falls with the tension (8.65 to
+    1.12 um), and a flat line per point's h_c stacked four labels over the curves at the
+    lower right. A level that moves along a series is one curve named in the legend; the
+    constant 3 sigma keeps its one label, at the left end here: every gap ends at the right
+    on the 3 sigma line, where the label would cover them."""
+    from webfem.io import charts
+    seen = {}
+    real_save = charts._save
+
+    def keep(fig, target):
+        fig.canvas.draw()
+        seen["texts"] = [t.get_text() for a in fig.axes for t in a.texts]
+        seen["sides"] = [t.get_ha() for a in fig.axes for t in a.texts]
+        seen["legend"] = [t.get_text() for t in fig.legends[0].texts]
+        return real_save(fig, target)
+
+    monkeypatch.setattr(charts, "_save", keep)
+    data = []
+    for label, scale in (("wrap 120", 1.0), ("wrap 60", 1.05)):
+        for T, hc in zip((100.0, 200.0, 300.0, 500.0), (8.65e-6, 5.16e-6, 3.33e-6, 1.12e-6)):
+            data.append({"series": label, "parameter": "web.tension", "value": T,
+                         "model": "fe1d", "mu": T / 1e4, "h_center": scale * 6.2e-3 / T,
+                         "h_inlet": scale * 6.6e-3 / T, "h_outlet": scale * 6e-3 / T,
+                         "converged": True, "h_c": hc, "sigma": 4e-6})
+    sweep_chart(data, tmp_path / "news.png")
+    assert not any(t.startswith("h_c =") for t in seen["texts"])
+    assert seen["texts"] == ["3 sigma = 12.00 um"] and seen["sides"] == ["left"]
+    assert "h_c (contact gap): moves with the parameter" in seen["legend"]
+
+
+def _idler_figure(monkeypatch, tmp_path, margins, speeds=None):
+    """The idler chart of a curve with these margins: its right panel's y limits, its
+    legend's texts, and the boxes of its words (measured before the save closes it)."""
+    from webfem.idler import MarginCurve
+    from webfem.io import idler_chart as module
+
+    n = len(margins)
+    speeds = speeds or tuple(np.linspace(1.0, 10.0, n))
+    curve = MarginCurve("fe1d", speeds, (1.25,) * n, tuple(1.25 * m for m in margins),
+                        tuple(margins), (0.0,) * n, (True,) * n)
+    seen = {}
+    real = module.save_figure
+
+    def keep(fig, path):
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        b = fig.axes[1]
+        seen.update(ylim=b.get_ylim(), legend=[t.get_text() for t in b.get_legend().texts]
+                    if b.get_legend() else [],
+                    words={t.get_text(): t.get_window_extent(renderer) for t in b.texts})
+        return real(fig, path)
+
+    monkeypatch.setattr(module, "save_figure", keep)
+    module.idler_chart(curve, tmp_path / "i.png")
+    return seen
+
+
+def test_idler_chart_shows_margins_far_below_its_floor(monkeypatch, tmp_path):
+    """The new-user trial's PET idler: margins 1e-16 to 1e-89 lay below the axis (1e-4) and
+    no mark said so. Now they sit on the floor (at most six decades below the slip line)
+    as triangles a legend explains with the smallest margin; a margin within the floor is
+    drawn where it is (the axis reaches it); the words never overlap."""
+    seen = _idler_figure(monkeypatch, tmp_path, [9.3e-17, 1e-30, 3.2e-42, 5.3e-89])
+    assert seen["ylim"][0] == pytest.approx(1e-6)
+    assert any("below 1e-06" in t and "5.3e-89" in t for t in seen["legend"])
+    words = seen["words"]
+    assert "slips at every speed shown" in words
+    boxes = list(words.values())
+    for i, one in enumerate(boxes):
+        for other in boxes[i + 1:]:
+            assert not one.overlaps(other), list(words)
+    seen = _idler_figure(monkeypatch, tmp_path, [8.0, 2.0, 0.5, 8.4e-5])
+    assert seen["ylim"][0] < 8.4e-5 and seen["legend"] == []
+    assert any(t.startswith("slips above") for t in seen["words"])
+
+
+def test_idler_table_says_it_slips_all_along_when_it_slips_at_the_lowest_speed():
+    """Slipping at the lowest speed answered is no onset: the PET idler's table said 'slips
+    above about 1 m/s', as if it held below."""
+    from webfem.cli.idler import _table
+    from webfem.idler import MarginCurve
+
+    def text(margins):
+        n = len(margins)
+        return _table(MarginCurve("fe1d", tuple(np.linspace(1.0, 10.0, n)), (1.25,) * n,
+                                  tuple(1.25 * m for m in margins), tuple(margins),
+                                  (0.0,) * n, (True,) * n), "si")
+    assert "slips at every speed from 1 m/s" in text([1e-16, 1e-30, 1e-42])
+    assert "slips above about" in text([3.0, 2.0, 0.5])

@@ -11,8 +11,9 @@ from webfem import Case
 from webfem.calibrate import calibrate, read_measurements
 from webfem.cli import main
 from webfem.models.closed import case_arrays, evaluate
-from webfem.traction import (CHART_PARAMETERS, TractionLoss, mu_curve, traction_loss_speed,
-                             traction_loss_table)
+from webfem.keys import key_meta
+from webfem.traction import (CHART_PARAMETERS, TractionLoss, chart_parameters, mu_curve,
+                             traction_loss_speed, traction_loss_table)
 
 
 def test_traction_loss_speed_is_a_crossing():
@@ -195,6 +196,64 @@ def test_traction_loss_chart_from_the_cli(tmp_path, capsys):
     assert main(["traction-loss", "cases/base.toml", "--mu-min", "0.5", "--json", "--model",
                  "closed-form"]) == 4
     assert json.loads(capsys.readouterr().out)["speed"] is None
+
+
+#: A newsprint line far from the paper's rig (the new-user trial's news.toml): 1.2 m web at
+#: 300 N/m, R 125 mm, 120 deg wrap, the web at 24.83 m/s.
+NEWS = {"web.width": 1.2, "web.tension": 300.0, "roller.radius": 0.125,
+        "wrap.angle_deg": 120.0, "roller.speed": 25.0, "web.speed": 24.833333333333332,
+        "web.thickness": 70e-6}
+
+
+def test_chart_ranges_follow_the_case():
+    """The paper's rig charts over the paper's ranges; a case outside them over ranges that
+    hold its values, inside each key's valid range (a wrap of 300 deg stays below 360)."""
+    assert chart_parameters(Case()) == CHART_PARAMETERS
+    news = Case().updated({**NEWS, "wrap.angle_deg": 300.0})
+    for key, _, (a, b) in chart_parameters(news):
+        meta, value = key_meta(key), news.get(key)
+        assert a <= value <= b and meta["lo"] <= a < b < meta["hi"] + (not meta["hi_open"])
+    ranges = {key: r for key, _, r in chart_parameters(news)}
+    assert ranges["web.tension"] == (150.0, 600.0) and ranges["web.width"] == (0.6, 2.4)
+    assert ranges["wrap.angle_deg"][0] == 150.0 and ranges["wrap.angle_deg"][1] < 360.0
+
+
+def test_traction_loss_table_skips_a_point_without_an_answer():
+    """Over the paper's tensions the newsprint case at 40 N/m has no answer (its film is
+    thicker than R/100): that row says why, the others are answered, nothing raises."""
+    rows = traction_loss_table(Case().updated(NEWS), 0.02, ("closed-form",), n=4,
+                               parameters=CHART_PARAMETERS)
+    low = next(r for r in rows if r["parameter"] == "web.tension" and r["value"] == 40.0)
+    assert low["speed"] is None and "R/100" in low["skipped"]
+    answered = [r for r in rows if r["speed"] is not None]
+    assert len(answered) >= 8 and all(r["skipped"] is None for r in answered)
+
+
+def test_traction_loss_chart_of_a_case_far_from_the_paper(tmp_path, capsys):
+    """The trial's command: the answer, then the chart written (exit 0), over ranges around
+    the case; a chart that fails leaves no empty folder it made behind it."""
+    case = tmp_path / "news.toml"
+    case.write_text("".join(f"{k} = {v!r}\n" for k, v in NEWS.items()))
+    out = tmp_path / "out_tl"
+    assert main(["traction-loss", str(case), "--mu-min", "0.02", "--model", "closed-form",
+                 "--chart", str(out), "--points", "3", "--quiet"]) == 0
+    assert (out / "news_traction_loss.png").stat().st_size > 10_000
+    assert "mu falls below 0.02" in capsys.readouterr().out
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("chart failed")
+
+    import webfem.io.charts
+    other = tmp_path / "out_2"
+    mp = pytest.MonkeyPatch()
+    mp.setattr(webfem.io.charts, "traction_loss_chart", broken)
+    try:
+        with pytest.raises(RuntimeError, match="chart failed"):
+            main(["traction-loss", str(case), "--mu-min", "0.02", "--model", "closed-form",
+                  "--chart", str(other), "--points", "2", "--quiet"])
+    finally:
+        mp.undo()
+    assert not other.exists()
 
 
 def test_traction_loss_table_trend():

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from .physics.effects import margin_range, margin_verdict
 
-__all__ = ["describe", "verdict", "error_text", "resting_text", "contact_gap_text"]
+__all__ = ["describe", "verdict", "error_text", "resting_text", "contact_gap_text", "level_words",
+           "regime_text"]
 
 _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
           "contact_share": "contact share"}
@@ -45,6 +46,48 @@ def contact_gap_text(s) -> str:
         return ""
     return (f" (below 0: contact alone carries T/R only with the web pressed "
             f"{-s.h_c * 1e6:.3g} um into the asperities)")
+
+
+def level_words(h_c: float, sigma: float) -> tuple[str, str]:
+    """What the levels h_c and 3 sigma mean for the paper's regime by the gap (boundary
+    below h_c, mixed up to 3 sigma, fluid above; h_c wins where they cross), as
+    ``(h_c's, 3 sigma's)``: where h_c lies above 3 sigma there is no mixed band and a gap
+    between them is fluid only once it clears h_c.
+
+    >>> level_words(4.94e-6, 4e-6)
+    ('boundary below', 'fluid above')
+    >>> level_words(2.2e-6, 0.2e-6)
+    ('boundary below, fluid above', 'no mixed band: below h_c')
+    """
+    if h_c is not None and sigma is not None and h_c >= 3.0 * sigma:
+        return "boundary below, fluid above", "no mixed band: below h_c"
+    return "boundary below", "fluid above"
+
+
+def regime_text(s, case=None) -> str:
+    """The regime line of :func:`describe`: the levels, the paper's regime by the gap with
+    its wrap shares, and, where they tell another story, what the contact model's load share
+    says (a fluid regime by the gap whose asperities still carry load: the contact law's
+    heights have no cut-off at 3 sigma)."""
+    um = 1e6
+    bands = ("boundary below h_c, mixed up to 3 sigma, fluid above"
+             if level_words(s.h_c, s.sigma)[1] == "fluid above" else
+             "h_c is above 3 sigma: boundary below h_c, fluid above, no mixed band")
+    text = (f"  h_c = {s.h_c * um:.3f} um{contact_gap_text(s)}, 3 sigma = "
+            f"{3 * s.sigma * um:.3f} um; regime {s.regime} by the gap (the paper's "
+            f"classification: {bands}; wrap shares: boundary {s.share_boundary:.2f}, "
+            f"mixed {s.share_mixed:.2f}, fluid {s.share_fluid:.2f})")
+    share = s.get("contact_share")
+    if s.regime == "fluid" and share is not None and share >= CONTACT_NOTED:
+        follows = ("; mu follows this load share, not the regime"
+                   if case is not None and case.friction_variant == "loads" else "")
+        text += (f"\n  yet by the contact model the asperities carry {100 * share:.1f} % of "
+                 f"the wrap load: its asperity heights have no cut-off at 3 sigma{follows}")
+    return text
+
+
+#: The contact load share a fluid regime's summary names (below it the words agree).
+CONTACT_NOTED = 0.005
 
 
 def verdict(s, case=None) -> str:
@@ -90,9 +133,7 @@ def describe(result) -> str:
         f"  gap: inlet {s.h_inlet * um:.3f} um, centre {s.h_center * um:.3f} um, "
         f"outlet {s.h_outlet * um:.3f} um, minimum {s.h_min * um:.3f} um"
         + (f" ({resting_text(s)})" if resting_text(s) else ""),
-        f"  h_c = {s.h_c * um:.3f} um{contact_gap_text(s)}, 3 sigma = {3 * s.sigma * um:.3f} um; "
-        f"regime {s.regime} (wrap shares: boundary {s.share_boundary:.2f}, "
-        f"mixed {s.share_mixed:.2f}, fluid {s.share_fluid:.2f})",
+        regime_text(s, c),
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
         + (": the traction available at the onset of slip (nothing slides, U_s = 0; "
            "mu_onset = mu_cc x contact share)" if s.mu_film is not None else ""),

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .api import solve_along
 from .case import Case
 from .errors import InputError
 from .keys import key_meta
@@ -32,7 +31,7 @@ from .models.options import Options
 from .models.registry import make_options, model_spec
 
 __all__ = ["TractionLoss", "traction_loss_speed", "traction_loss_table", "mu_curve",
-           "fitted_speed_range",
+           "fitted_speed_range", "chart_parameters",
            "CHART_PARAMETERS", "SPEED_RANGE", "CHART_POINTS"]
 
 #: Roller speeds [m/s] a traction-loss scan spans unless told otherwise.
@@ -262,26 +261,37 @@ def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[
 
 def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = None
              ) -> tuple[np.ndarray, np.ndarray]:
-    """mu against roller speed: ``(speeds, mu)``, walked with continuation; a point that does
-    not converge is NaN (a gap in a chart's line).
+    """mu against roller speed: ``(speeds, mu)``, walked with continuation; a point without
+    an answer (not converged, a case the model does not hold at that speed, outside the
+    fitted model's domain) is NaN: a gap in a chart's line, not the end of the chart.
 
     >>> u, mu = mu_curve(Case(), "closed-form", [2.0, 30.0])
     >>> bool(mu[0] > mu[1])   # air lifts the web: traction falls with speed
     True
     """
+    from .api import solve_many
+
     speeds = np.asarray(speeds, float)
-    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    cases, where = [], []
+    for j, u in enumerate(speeds):
+        try:
+            cases.append(case.updated({"roller.speed": float(u)}))
+            where.append(j)
+        except InputError:
+            pass
+    mu = np.full(len(speeds), np.nan)
     if model == "fitted":       # outside its domain (which moves with the speed): NaN
         from .models import fit_groups as fg
-        from .models.fitted import solve_many
-        inside = np.array([fg.outside(c) is None for c in cases], bool)
-        mu = np.full(len(cases), np.nan)
-        mu[inside] = [r["mu"] for r in solve_many(
-            [c for c, ok in zip(cases, inside) if ok], make_options(model, options))]
+        from .models.fitted import solve_many as fitted_many
+        inside = [k for k, c in enumerate(cases) if fg.outside(c) is None]
+        if inside:
+            mu[np.array(where)[inside]] = [r["mu"] for r in fitted_many(
+                [cases[k] for k in inside], make_options(model, options))]
         return speeds, mu
-    mu = [r["mu"] if r["converged"] else np.nan
-          for r in solve_along(cases, model, make_options(model, options))]
-    return speeds, np.array(mu, float)
+    # solve_many keeps a refused point (its film too thick at that speed, say) as unconverged
+    results = solve_many(cases, model, make_options(model, options))
+    mu[where] = [r["mu"] if r["converged"] else np.nan for r in results]
+    return speeds, mu
 
 
 #: The paper's operating parameters and the ranges the traction-loss chart spans:
@@ -290,6 +300,37 @@ CHART_PARAMETERS = (("web.tension", "T [N/m]", (40.0, 120.0)),
                     ("wrap.angle_deg", "B [deg]", (20.0, 120.0)),
                     ("web.width", "L [m]", (0.02, 0.2)),
                     ("roller.radius", "R [m]", (0.035, 0.1)))
+
+
+#: How far a chart's range reaches either side of a case value outside the paper's range:
+#: from the value / SPAN to the value * SPAN (a factor, so a 1.2 m web and a 20 mm one get
+#: ranges alike in shape).
+SPAN = 2.0
+
+
+def chart_parameters(case: Case) -> tuple:
+    """:data:`CHART_PARAMETERS` with ranges that hold ``case``'s values: the paper's range
+    where it holds the case's value (the paper's rig and cases near it chart as the paper
+    did), else the value / :data:`SPAN` to the value * SPAN, inside the key's valid range
+    (a wrap angle stays below 360 deg).
+
+    >>> [r for _, _, r in chart_parameters(Case())] == [r for _, _, r in CHART_PARAMETERS]
+    True
+    >>> chart_parameters(Case().updated({"web.tension": 300.0}))[0][2]
+    (150.0, 600.0)
+    """
+    out = []
+    for key, label, (a, b) in CHART_PARAMETERS:
+        value = float(case.get(key))
+        if not a <= value <= b:
+            meta = key_meta(key)
+            lo, hi = meta["lo"], meta["hi"]
+            # an open end is kept out by a hair: the key refuses the end itself
+            lo = lo * 1.001 if meta["lo_open"] else lo
+            hi = hi * 0.999 if meta["hi_open"] else hi
+            a, b = max(value / SPAN, lo), min(value * SPAN, hi)
+        out.append((key, label, (float(a), float(b))))
+    return tuple(out)
 
 
 def _options_for(model: str, options):
@@ -305,10 +346,15 @@ def _options_for(model: str, options):
 def traction_loss_table(case: Case, mu_min: float, models=("auto",),
                         n: int = CHART_POINTS,
                         n_scan: int = 16, progress=None, options=None, workers: int = 1,
-                        **values) -> list[dict]:
-    """Traction-loss speed against each of :data:`CHART_PARAMETERS` (the others at the case's
-    values), ``n`` values each, one row per model and value: ``model``, ``parameter``,
-    ``value``, ``speed`` (None: no loss in range), ``mu_peak``, ``evaluations``.
+                        parameters=None, speed_range=SPEED_RANGE, **values) -> list[dict]:
+    """Traction-loss speed against each of ``parameters`` (default
+    :func:`chart_parameters` of ``case``; the others at the case's values), ``n`` values
+    each, one row per model and value: ``model``, ``parameter``, ``value``, ``speed``
+    (None: no loss in range, or no answer), ``mu_peak``, ``evaluations`` and ``skipped``:
+    None, or why the point has no answer (its case is not one the model holds, e.g. a film
+    too thick for the thin-film model at a low tension, or a solve that did not converge):
+    a point without an answer does not end the table. ``speed_range``: the roller speeds
+    each search scans [m/s].
 
     ``options`` (or keywords): the FE model's options; the closed form takes its defaults.
     ``workers`` > 1 runs the searches in that many local processes: each search is the same
@@ -319,8 +365,10 @@ def traction_loss_table(case: Case, mu_min: float, models=("auto",),
 
     check_workers(workers)
     options = dict(values) if values and options is None else options
-    tasks = [(case, mu_min, model, key, float(value), n_scan, _options_for(model, options))
-             for model in models for key, _, (a, b) in CHART_PARAMETERS
+    parameters = chart_parameters(case) if parameters is None else parameters
+    tasks = [(case, mu_min, model, key, float(value), n_scan, _options_for(model, options),
+              tuple(speed_range))
+             for model in models for key, _, (a, b) in parameters
              for value in np.linspace(a, b, n)]
     rows: list = [None] * len(tasks)
     done = 0
@@ -347,9 +395,17 @@ def traction_loss_table(case: Case, mu_min: float, models=("auto",),
 
 
 def _table_row(case: Case, mu_min: float, model: str, key: str, value: float, n_scan: int,
-               options) -> dict:
-    """One row of :func:`traction_loss_table` (a worker's task)."""
-    out = traction_loss_speed(case.updated({key: value}), mu_min, model, n_scan=n_scan,
-                              options=options)
+               options, speed_range=SPEED_RANGE) -> dict:
+    """One row of :func:`traction_loss_table` (a worker's task): a point the model cannot
+    answer is a row saying why, not an error (one impossible point of a chart must not
+    cost the others)."""
+    from .errors import ConvergenceError
+
+    try:
+        out = traction_loss_speed(case.updated({key: value}), mu_min, model, n_scan=n_scan,
+                                  options=options, speed_range=speed_range)
+    except (InputError, ConvergenceError) as err:   # the fitted model's OutsideDomain too
+        return {"model": model, "parameter": key, "value": value, "speed": None,
+                "mu_peak": None, "evaluations": 0, "skipped": " ".join(str(err).split())}
     return {"model": model, "parameter": key, "value": value, "speed": out.speed,
-            "mu_peak": out.mu_peak, "evaluations": out.evaluations}
+            "mu_peak": out.mu_peak, "evaluations": out.evaluations, "skipped": None}

@@ -91,7 +91,15 @@ def _table(curve, units: str) -> str:
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]
-    if slip is not None:
+    answered = [u for u, ok in zip(curve.speeds, curve.converged) if ok]
+    if slip is not None and slip <= answered[0]:
+        # slipping at the lowest speed answered is no onset: "above about" would say it holds
+        # below it, which nothing here shows
+        lines.append(f"  the idler slips at every speed from {display(slip, 'speed', units, 3)}"
+                     " (already at the lowest speed answered)"
+                     + (" (by the margins; their stated ranges leave it unsure)"
+                        if unsure else ""))
+    elif slip is not None:
         lines.append(f"  the idler slips above about {display(slip, 'speed', units, 3)}"
                      + (" (by the margins; their stated ranges leave it unsure)"
                         if unsure else ""))

@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..traction import (CHART_PARAMETERS, CHART_POINTS, SPEED_RANGE, mu_curve,
+from ..traction import (CHART_POINTS, SPEED_RANGE, chart_parameters, mu_curve,
                         traction_loss_speed, traction_loss_table)
 from ..errors import InputError
 from ..keys import key_meta
-from ..units import display
+from ..units import ROLES, display
 from .summary import in_units
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, Ticker, add_case_arguments,
                      add_quiet_argument, add_units_argument, case_from, local_workers,
@@ -43,7 +43,9 @@ def add_parser(subparsers) -> None:
                         "speed_peak, bracket, scanned, evaluations, message; units: SI)")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
-                        "form and --model) into DIR")
+                        "form and --model) into DIR: each over the paper's range where that "
+                        "holds the case's value, else the value / 2 to the value * 2; a point "
+                        "without an answer is an x on the panel's floor, named on stderr")
     p.add_argument("--points", type=positive_int, default=CHART_POINTS,
                    help=f"points per parameter in the chart (default {CHART_POINTS})")
     p.add_argument("--workers", type=positive_int, default=None,
@@ -79,7 +81,19 @@ def _speed_range(low, high) -> tuple[float, float]:
 def run(args) -> int:
     case = case_from(args)
     options = model_options(args)
+    # a folder this command makes is removed again should the chart fail: never an empty
+    # folder left beside a printed answer
+    made = args.chart and not Path(args.chart).exists()
     chart_dir = output_folder(args.chart, "--chart") if args.chart else None
+    try:
+        return _run(args, case, options, chart_dir)
+    except BaseException:
+        if made and chart_dir is not None and not any(chart_dir.iterdir()):
+            chart_dir.rmdir()
+        raise
+
+
+def _run(args, case, options, chart_dir) -> int:
     speed_range = _speed_range(args.min_speed, args.max_speed)
     workers = local_workers(args.workers, DEFAULT_WORKERS)
     with Ticker(f"scanning roller speeds with {args.model}", args.quiet):
@@ -97,13 +111,25 @@ def run(args) -> int:
         from ..io.charts import traction_loss_chart
 
         models = list(dict.fromkeys(["closed-form", args.model]))
+        parameters = chart_parameters(case)
         rows = traction_loss_table(case, out.mu_min, models, n=args.points, options=options,
-                                   progress=Progress(args.quiet), workers=workers)
+                                   progress=Progress(args.quiet), workers=workers,
+                                   parameters=parameters, speed_range=speed_range)
         speeds = np.geomspace(max(args.min_speed, 1e-3), args.max_speed, 40)
         curves = {m: mu_curve(case, m, speeds, options if m == args.model else None)
                   for m in models}
+        stem = Path(args.case).stem
         path = traction_loss_chart(rows, curves, out.mu_min,
-                                   chart_dir / f"{Path(args.case).stem}_traction_loss.png",
-                                   CHART_PARAMETERS, units=args.units)
+                                   chart_dir / f"{stem}_traction_loss.png", parameters,
+                                   units=args.units, title=stem,
+                                   case_values={k: case.get(k) for k, *_ in parameters})
+        for r in rows:
+            if r.get("skipped"):
+                role = ROLES.get(r["parameter"])
+                value = (display(r["value"], role, args.units, 3) if role
+                         else f"{r['value']:.3g}")
+                print(f"webfem traction-loss: chart point {r['parameter']} = {value} "
+                      f"({r['model']}) has no answer, marked x: {r['skipped']}",
+                      file=sys.stderr)
         print(f"wrote {path}", file=sys.stderr)
     return 0 if out.speed is not None else 4

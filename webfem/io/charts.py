@@ -110,11 +110,35 @@ def needs_markers(values) -> bool:
                                 rtol=0.05))
 
 
+def _crowding(ax, boxes, left: bool) -> int:
+    """How many samples of the lines drawn on ``ax``'s figure fall inside the label
+    ``boxes`` (``(width, bottom, top)`` in pixels) set against ``ax``'s left or right edge:
+    how much of the data labels there would cover."""
+    edge = ax.get_window_extent()
+    count = 0
+    for axes in ax.figure.axes:
+        for line in axes.get_lines():
+            xy = line.get_xydata()
+            if not line.get_visible() or len(xy) == 0:
+                continue
+            px = line.get_transform().transform(xy)
+            px = px[np.isfinite(px).all(axis=1)]
+            if len(px) >= 2:    # the segments between points cover the data too
+                t = np.linspace(0.0, 1.0, 24)[:, None]
+                px = np.concatenate([a + t * (b - a) for a, b in zip(px[:-1], px[1:])])
+            for width, bottom, top in boxes:
+                x0, x1 = (edge.x0, edge.x0 + width) if left else (edge.x1 - width, edge.x1)
+                count += int(np.sum((px[:, 0] >= x0) & (px[:, 0] <= x1)
+                                    & (px[:, 1] > bottom) & (px[:, 1] < top)))
+    return count
+
+
 def _level_labels(ax, levels: dict, unit: str = "um") -> None:
     """Draw the regime levels on the gap axis ``ax``: ``levels`` maps a gap [``unit``] to
-    ``(name, series labels)``. Each distinct value gets one label at the axis' right end,
-    naming the series when not all share it; labels closer than a text line are pushed
-    apart (with a thin leader) so none prints on top of another."""
+    ``(name, series labels)``. Each distinct value gets one label, naming the series when
+    not all share it; labels closer than a text line are pushed apart (with a thin leader)
+    so none prints on top of another; they sit at the axis's right end, or at its left
+    where they would cover less than half as much of the drawn lines."""
     everyone = set().union(*(who for _, who in levels.values())) if levels else set()
     fig = ax.figure
     fig.canvas.draw()   # the axis limits and pixel scale are final only after a draw
@@ -127,10 +151,20 @@ def _level_labels(ax, levels: dict, unit: str = "um") -> None:
         at = max(y, placed[-1][2] + step) if placed else y
         whose = "" if who == everyone else f" ({', '.join(sorted(who))})"
         placed.append((level, f"{name} = {level_text(level)} {unit}{whose}", at, y))
+    if not placed:
+        return
+    # each label's box: about 0.55 em a character wide, from just above its level line
+    # (the line itself is not covered) to the next line of text
+    em = 7.0 * fig.dpi / 72.0
+    boxes = [(0.55 * em * len(text) + 6, at + 2, at + step) for _, text, at, _ in placed]
+    # the right end unless the left is clearly clearer: a label does not jump sides
+    # between two charts alike for a line or two
+    left = 2 * _crowding(ax, boxes, left=True) < _crowding(ax, boxes, left=False)
     for level, text, at, y in placed:
-        ax.annotate(text, (1.0, level), xycoords=("axes fraction", "data"),
-                    xytext=(-3, 1.5 + (at - y) * 72.0 / fig.dpi), textcoords="offset points",
-                    ha="right", va="bottom", fontsize=7, color="0.25",
+        ax.annotate(text, (0.0 if left else 1.0, level), xycoords=("axes fraction", "data"),
+                    xytext=(3 if left else -3, 1.5 + (at - y) * 72.0 / fig.dpi),
+                    textcoords="offset points", ha="left" if left else "right", va="bottom",
+                    fontsize=7, color="0.25",
                     bbox=dict(fc="white", ec="none", alpha=0.8, pad=0.3),
                     arrowprops=dict(arrowstyle="-", color="0.6", lw=0.5) if at > y else None)
 
@@ -167,7 +201,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     ax2 = ax.twinx()
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     marker = "o" if needs_markers(xs(rows)) else None
-    levels = {}
+    levels, varying = {}, set()
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
         good = [r for r in sel if r.get("converged") is True]
@@ -195,10 +229,18 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
             for key, name, dash in _GAP_STYLES:
                 ax2.plot(rU, gaps(ref, key), linestyle=dash, color=colour, lw=0.6, alpha=0.7)
         for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
-            for r in good:
-                if np.isfinite(_f(r, key)):
-                    value = float(level_text(factor * float(gaps([r], key)[0])))
-                    levels.setdefault(value, (name, set()))[1].add(str(label))
+            here = [(x, float(level_text(factor * float(gaps([r], key)[0]))))
+                    for x, r, k in zip(U, sel, ok) if k and np.isfinite(_f(r, key))]
+            if len({v for _, v in here}) > 1:
+                # a level that moves with the swept parameter (h_c with the tension) is a
+                # curve: a flat line per point's value across the whole axis would claim
+                # levels that hold at one point only
+                ax2.plot([x for x, _ in here], [v for _, v in here], color="0.45", lw=0.9,
+                         ls="-.", zorder=1)
+                varying.add(name)
+                continue
+            for _, value in here:
+                levels.setdefault(value, (name, set()))[1].add(str(label))
     if log_x is None:
         log_x = log_spaced([r["value"] for r in rows])
     if log_x:
@@ -217,6 +259,10 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     styles = [(Line2D([], [], color="k", lw=1.1 if m == models[0] else 0.6, linestyle=dash),
                f"gap h {name} ({m}{'' if m == models[0] else ', thin'})")
               for m in models for _, name, dash in _GAP_STYLES]
+    meaning = {"h_c": "h_c (contact gap)", "3 sigma": "3 sigma (fluid above)"}
+    styles += [(Line2D([], [], color="0.45", lw=0.9, ls="-."),
+                f"{meaning[name]}: moves with the parameter")
+               for name in ("h_c", "3 sigma") if name in varying]
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
                loc="outside right upper")
     _level_labels(ax2, levels, thin)
@@ -244,15 +290,20 @@ def stated_errors_text(rows: list[dict]) -> str:
 
 
 def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
-                        parameters, units: str = "si") -> Path:
+                        parameters, units: str = "si", case_values: dict | None = None,
+                        title: str = "base case") -> Path:
     """Panels: mu against roller speed with the threshold (the traction-loss speed is where
     each curve falls through it), then the traction-loss speed against each parameter, one
     line per model.
 
-    ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss); ``mu_curves``:
-    model -> (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
-    :data:`webfem.traction.CHART_PARAMETERS` (a key of :data:`webfem.units.ROLES` is drawn
-    in ``units``, with :func:`parameter_label`; others as they are, with their label).
+    ``rows``: ``model``, ``parameter``, ``value``, ``speed`` (None: no loss), and optionally
+    ``skipped`` (why a point has no answer: drawn as an x on the panel's floor and counted
+    in a note, so a gap is not read as "no loss in range"); ``mu_curves``: model ->
+    (speeds, mu); ``parameters``: ``(key, axis label, range)`` per panel, e.g.
+    :func:`webfem.traction.chart_parameters` (a key of :data:`webfem.units.ROLES` is drawn
+    in ``units``, with :func:`parameter_label`; others as they are, with their label);
+    ``case_values``: key -> the case's own value, marked on its panel; ``title``: the first
+    panel's (the case the curves are of).
     """
     parameters = list(parameters)
     speed = unit_label("speed", units)
@@ -265,20 +316,49 @@ def traction_loss_chart(rows: list[dict], mu_curves: dict, mu_min: float, path,
     ax.axhline(mu_min, color="k", lw=0.8, ls="--", label=f"mu_min = {mu_min:g}")
     ax.set_xlabel(f"roller speed U_r [{speed}]")
     ax.set_ylabel("mu [-]")
-    ax.set_title("base case", fontsize=9)
+    ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="best")
+    case_values = case_values or {}
     for ax, (key, label, *_) in zip(axes[1:], parameters):
+        role = ROLES.get(key)
+        # a point without a speed is marked on the panel's edge, so a gap is never read as
+        # one thing when it is another: ^ top (mu stays above mu_min at every speed
+        # scanned: the loss is faster), v floor (mu never reaches it: no traction to lose),
+        # x floor (no answer at all)
+        marks = {"^": [], "v": [], "x": []}
         for model in dict.fromkeys(r["model"] for r in rows):
             sel = [r for r in rows if r["model"] == model and r["parameter"] == key]
-            ax.plot(display_values([r["value"] for r in sel], ROLES.get(key), units),
-                    display_values([r["speed"] for r in sel], "speed", units), "o-",
-                    label=model, ms=3)
+            line, = ax.plot(display_values([r["value"] for r in sel], role, units),
+                            display_values([r["speed"] for r in sel], "speed", units), "o-",
+                            label=model, ms=3)
+            for r in sel:
+                if r.get("skipped"):
+                    marks["x"].append((r["value"], "C3"))
+                elif r["speed"] is None:
+                    above = _f(r, "mu_peak") >= mu_min
+                    marks["^" if above else "v"].append((r["value"], line.get_color()))
+        for marker, points in marks.items():
+            for value, color in points:
+                ax.plot(display_values(value, role, units)[0], 1.0 if marker == "^" else 0.0,
+                        marker, color=color, ms=6, mew=1.5, clip_on=False,
+                        transform=ax.get_xaxis_transform())
+        if key in case_values:
+            ax.axvline(display_values(case_values[key], role, units)[0], color="0.5", lw=0.8,
+                       ls=":", label="this case")
         ax.set_xlabel(parameter_label(key, units) if key in ROLES else label)
         ax.set_ylabel(f"traction-loss speed [{speed}]")
+        notes = []
         if key == "web.width" and any(r["model"] == "fe1d" for r in rows):
-            ax.annotate("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
-                        "the width never enters it", (0.03, 0.97), xycoords="axes fraction",
-                        ha="left", va="top", fontsize=6.5, color="0.3")
+            notes.append("fe1d is flat in width: a 1-D film has no\nedge leakage, so "
+                         "the width never enters it")
+        words = {"^": "^ top: mu above mu_min at every speed scanned",
+                 "v": "v floor: mu below mu_min at every speed scanned",
+                 "x": "x floor: no answer (see the command's message)"}
+        notes += [f"{words[m]} ({len(p)})" for m, p in marks.items() if p]
+        if notes:
+            # above the panel, where constrained layout makes room: inside it a note hid
+            # the points it explains
+            ax.set_title("\n".join(notes), fontsize=6.5, color="0.3", loc="left")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(f"Roller speed at which mu falls below {mu_min:g}", fontsize=10)

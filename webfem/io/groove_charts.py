@@ -42,8 +42,10 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
     speeds = list(dict.fromkeys(r["speed"] for r in rows))
     keys = list(dict.fromkeys((r["pitch"], r["depth"]) for r in rows))
     colors = {key: f"C{k % 10}" for k, key in enumerate(keys)}
-    fig, axes = plt.subplots(1, len(speeds), figsize=(1.0 + 5.0 * len(speeds), 5.2), squeeze=False,
-                             sharey=True)
+    # constrained layout keeps the axis label, the tick labels and the legend inside the
+    # canvas; a single panel is widened so the legend's two columns fit beside each other
+    fig, axes = plt.subplots(1, len(speeds), figsize=(max(8.0, 1.0 + 5.0 * len(speeds)), 5.4),
+                             squeeze=False, sharey=True, layout="constrained")
     mus = [r["mu"] for r in rows if r["converged"]] + [mu_min]
     bottom = min(mus) - 0.06 * (max(mus) - min(mus) + 1e-3)
     for ax, speed in zip(axes[0], speeds):
@@ -65,8 +67,11 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
                                 color=colors[key], fontsize=6.5, fontweight="bold",
                                 zorder=5)
             failed = [100 * r["land_fraction"] for r in mine if not r["converged"]]
-            ax.plot(failed, [bottom] * len(failed), "x", color=colors[key], ms=9, mew=2,
-                    clip_on=False, zorder=4)
+            if failed:
+                # out of the layout: an unclipped mark (an empty one sits at the canvas's
+                # corner) would make constrained layout shrink the panels to nothing
+                ax.plot(failed, [bottom] * len(failed), "x", color=colors[key], ms=9, mew=2,
+                        clip_on=False, zorder=4)[0].set_in_layout(False)
         b = (best or {}).get(speed)
         if b is not None:
             b = b.to_dict() if hasattr(b, "to_dict") else b
@@ -79,7 +84,7 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
         ax.set_xlabel("land fraction a / pitch [%]  (contact area)")
         ax.grid(alpha=0.3)
     axes[0][0].set_ylim(bottom=bottom)
-    axes[0][0].set_ylabel("traction coefficient mu [-]")
+    axes[0][0].set_ylabel("mu [-]: wrap-averaged friction coefficient")
     handles = [Line2D([], [], color=colors[k], marker="o",
                       label=f"pitch {shown(k[0])} {size}, depth {shown(k[1])} {size}")
                for k in keys]
@@ -91,18 +96,17 @@ def groove_chart(designs, mu_min: float, path, best: dict | None = None,
                        label="ringed: best (most land with mu >= mu_min)")]
     if any(r.get("flag") for r in rows):
         handles.append(Line2D([], [], ls="none", marker="$!$", color="0.4",
-                              label="!: the web sags into its grooves: not what fe2d "
+                              label="!: the web sags into its grooves:\nnot what fe2d "
                                     "computes (the CSV's flag)"))
     if any(not r["converged"] for r in rows):
         handles.append(Line2D([], [], ls="none", marker="x", mew=2, color="0.4",
                               label="x: no answer (see the CSV)"))
-    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    ncol = 2 if len(speeds) == 1 else 3
+    fig.legend(handles=handles, loc="outside lower center", ncol=ncol, fontsize=8,
+               frameon=False)
     fig.suptitle("Grooved roller sizing (fe2d): filled points keep mu >= mu_min"
                  + (" and are within the model" if any(r.get("flag") for r in rows) else ""),
                  fontsize=11)
-    rows_of_legend = (len(handles) + 2) // 3
-    fig.subplots_adjust(left=0.07, right=0.98, top=0.86, wspace=0.06,
-                        bottom=0.14 + 0.05 * rows_of_legend)
     return save_figure(fig, path)
 
 

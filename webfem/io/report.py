@@ -52,16 +52,19 @@ SUMMARY_UNITS = {
     "delta_T": ("N/m", "tension increase the roller carries before slip (Eq. 31)"),
     "mu_film": ("-", "nothing sliding: the film's own drag at these speeds"),
     "delta_T_film": ("N/m", "nothing sliding: the belt formula's delta_T for mu_film"),
-    "regime": ("", "lubrication regime over most of the wrap"),
+    "regime": ("", "lubrication regime over most of the wrap, by the gap against h_c and "
+                   "3 sigma (the paper's classification; the load the asperities carry is "
+                   "contact_share)"),
     "h_center": ("um", "gap at the wrap centre"), "h_inlet": ("um", "gap at the inlet edge"),
     "h_outlet": ("um", "gap at the outlet edge"), "h_min": ("um", "smallest gap"),
     "x_min": ("mm", "position of the smallest gap"),
-    "h_c": ("um", "contact gap: boundary lubrication below"),
+    "h_c": ("um", "contact gap: the asperities alone carry T/R; boundary lubrication below"),
     "sigma": ("um", "combined RMS roughness (fluid above 3 sigma)"),
     "share_boundary": ("-", "share of the wrap in boundary lubrication"),
     "share_mixed": ("-", "share of the wrap in mixed lubrication"),
     "share_fluid": ("-", "share of the wrap in fluid lubrication"),
-    "contact_share": ("-", "share of the wrap load carried by the asperities"),
+    "contact_share": ("-", "share of the wrap load carried by the asperities (the contact "
+                           "model: its heights have no cut-off at 3 sigma)"),
     "lambda": ("-", "width parameter L / (2 R eps^(1/3))"),
     "beta": ("-", "wrap parameter B / eps^(1/3)"),
     "eq21_valid": ("", "inside Eq. 21's range (beta > 6, lambda > 7)"),
@@ -257,7 +260,11 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
     body = {"inputs": _inputs(result.case, units), "model": _model(result, asked),
             "summary": _summary(result, units), "pictures": figures, "warnings": warn,
             "computed": _computed(result, version)}
-    head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)}, smallest gap "
+    share = s.get("contact_share")
+    carried = (f"contact carries {100 * share:.1f} % of the load, "
+               if share is not None and math.isfinite(share) else "")
+    head = (f"<p class=sub>mu = {s.mu:.4g}, regime {escape(s.regime)} (by the gap), "
+            f"{carried}smallest gap "
             f"{convert(s.h_min, 'thin', units):.3g} {unit_label('thin', units)}"
             f"{f' ({escape(rests)})' if rests else ''}; model "
             f"{escape(used)}"
