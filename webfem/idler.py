@@ -23,6 +23,7 @@ import numpy as np
 from .api import solve_along
 from .case import Case
 from .errors import InputError
+from .line_speed import at_speed
 from .physics.effects import margin_range, margin_verdict
 
 __all__ = ["MarginCurve", "margin_curve"]
@@ -114,7 +115,8 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
         raise InputError("the case states no idler load: set roller.drag_torque [N m] or "
                          "roller.inertia [kg m^2] with web.acceleration [m/s^2]")
     speeds = [float(u) for u in speeds]
-    cases = [case.updated({"roller.speed": u, "web.speed": u}) for u in speeds]
+    # the check is at the onset of slip: the line moves with U_r = U_w (webfem.line_speed)
+    cases = [at_speed(case, u, ratio=1.0) for u in speeds]
     keys = ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")
     if model == "fitted":
         # its domain moves with the speed: a speed outside it has no answer (NaN), the
