@@ -91,9 +91,22 @@ class MarginCurve:
         return f"{self.model}: " + ", ".join(f"{m} at {n}" for m, n in counts.items()) \
             + " speeds"
 
+    def slip_extent(self) -> str:
+        """Where the answered speeds slip (margin below 1): ``every`` speed tried,
+        ``lowest`` (the lowest answered speed, not all of them: where it starts slipping
+        lies below the range), ``above`` (it holds at the lowest and slips above
+        :meth:`slip_speed`), ``none`` (it holds at every answered speed) or ``unanswered``."""
+        ok = np.asarray(self.converged, bool)
+        m = np.asarray(self.slip_margin, float)[ok]
+        if m.size == 0:
+            return "unanswered"
+        below = m < 1.0
+        return ("every" if below.all() else "lowest" if below[0] else "above" if below.any()
+                else "none")
+
     def slip_speed(self) -> float | None:
         """The first line speed where the margin falls below 1 (linear interpolation), or
-        None when the idler holds over the whole range."""
+        None when the idler holds at every answered speed."""
         # only answers count: an unconverged solve's margin is no evidence either way
         ok = np.asarray(self.converged, bool)
         m = np.asarray(self.slip_margin, float)[ok]

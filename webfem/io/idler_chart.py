@@ -39,7 +39,10 @@ def idler_chart(curve, path, title: str = "", units: str = "si") -> Path:
     b.text(u[0], 0.5, "slips", color="C3", fontsize=8, va="top")
     b.text(u[0], 2.0, "holds", color="C2", fontsize=8, va="bottom")
     slip = curve.slip_speed()
-    if slip is not None:
+    if curve.slip_extent() in ("every", "lowest"):   # no speed tried marks where it starts
+        b.annotate("slips at the lowest speed tried", (u[0], 1.0), xytext=(6, 12),
+                   textcoords="offset points", fontsize=8, color="C3")
+    elif slip is not None:
         at = convert(slip, "speed", units)
         b.axvline(at, color="C3", lw=0.8, ls=":")
         b.annotate(f"slips above {display(slip, 'speed', units, 3)}", (at, 1.0), xytext=(6, 12),
