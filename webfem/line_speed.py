@@ -1,7 +1,7 @@
 """A line at another speed: the one place a case is moved to a scanned speed.
 
 A speed scan (the traction-loss search, the groove map and its loss search, the chart's mu
-curve) asks how the line behaves faster or slower: the roller and the web move together,
+curve, the studies' speed axes) asks how the line behaves faster or slower: the roller and the web move together,
 so the scan keeps the case's web-to-roller speed ratio U_w/U_r (the paper's rig, web at
 rest, keeps ratio 0: only the roller moves; an idler, ratio 1, keeps U_r = U_w; a draw of
 1 % keeps it). The scanned speed is the roller's, U_r; the web follows at ratio x U_r.
@@ -10,7 +10,8 @@ have, and the asperity friction (2/pi) mu_cc atan(U_s/C) with it. A case whose r
 still (U_r = 0, a web dragged over a fixed bar) has no ratio: its web speed is kept.
 
 The idler's margin (:mod:`webfem.idler`) is the check at the onset of slip, U_r = U_w, so it
-moves the line with ratio 1 whatever the case's speeds are.
+moves the line with ratio 1 whatever the case's speeds are. A sweep is not a scan of the
+line: it sets the one key it names (``roller.speed`` moves the roller alone).
 
 Examples
 --------
