@@ -323,3 +323,32 @@ def test_slip_warning_says_what_the_slip_model_leaves():
     without = slip_warning(base.updated({"air.slip": "none"}), 4e-7)
     assert "continuum Reynolds equation overestimates" in without
     assert slip_warning(base, 1e-6) is None and slip_warning(base, -1e-7) is None
+
+
+@pytest.mark.parametrize("a", [0.5, -0.5, -5.0, -6.05])
+def test_idler_load_follows_the_rollers_equation(a):
+    """J alpha = R F - M_d with alpha = a/R, F = delta_T L: delta_T_required =
+    |M_d + J a/R| / (R L). Slowing down (a < 0) the roller's inertia helps the drag (the old
+    J |a| / R counted it against the web); past M_d = J |a| / R (a = -0.275 m/s^2 here) the
+    web brakes the roller."""
+    from webfem.physics.effects import idler_check
+
+    case = Case().updated({**IDLER, "web.acceleration": a})
+    R, L = case.roller.radius, case.web.width
+    out = idler_check(case, 0.2)
+    assert out["delta_T_required"] == pytest.approx(abs(0.01 + 0.002 * a / R) / (R * L),
+                                                    rel=1e-12)
+    assert out["slip_margin"] == pytest.approx(out["delta_T_available"]
+                                               / out["delta_T_required"], rel=1e-12)
+
+
+def test_idler_with_drag_and_inertia_cancelling_holds():
+    from webfem.physics.effects import idler_check, traction_summaries
+
+    a = -0.01 * 0.055 / 0.002     # J a / R = -M_d
+    case = Case().updated({**IDLER, "web.acceleration": a})
+    out = idler_check(case, 0.2)
+    assert out["delta_T_required"] == pytest.approx(0.0, abs=1e-12)
+    assert out["slip_margin"] > 1e6
+    many = traction_summaries([case], [0.1], [0.5])[0]
+    assert many["delta_T_required"] == pytest.approx(0.0, abs=1e-12)

@@ -181,4 +181,19 @@ def test_idler_without_stated_errors_or_answers_says_so(capsys):
     assert main(["idler", "idler", "--model", "fitted", "--num", "4", "--min-speed", "1",
                  "--max-speed", "9"]) == 0
     out = capsys.readouterr().out
-    assert "unsure at 9 m/s" in out and "holds over the whole range" not in out
+    assert "unsure at 9 m/s" in out and "holds at every speed tried" not in out
+
+
+@pytest.mark.parametrize("low,high,said", [
+    (1.0, 3.0, "the idler holds at every speed tried (1 m/s to 3 m/s)"),
+    (20.0, 30.0, "the idler slips at every speed tried (20 m/s to 30 m/s)"),
+    (1.0, 30.0, "the idler slips above about")])
+def test_idler_verdict_names_the_speeds_tried(capsys, low, high, said):
+    """Slipping at the lowest speed tried is not "slips above about" that speed (it once
+    said so of a PET idler slipping at every speed from 60 m/min): where it starts slipping
+    lies below the range."""
+    assert main(["idler", "idler", "--model", "closed-form", "--num", "4", "--min-speed",
+                 str(low), "--max-speed", str(high)]) == 0
+    out = capsys.readouterr().out
+    assert said in out
+    assert (f"slips above about {low:g} m/s" not in out)

@@ -114,3 +114,18 @@ def test_the_stated_mu_error_of_an_idler_is_that_of_the_onset_traction():
     assert 0.0 < fe1d["error_mu"] < 0.5
     true = abs(fe1d["mu"] - fe2d["mu"]) / fe1d["mu"]
     assert true <= 2.0 * fe1d["error_mu"], (true, fe1d["error_mu"])
+
+
+def test_idler_line_says_the_web_slides_where_the_speeds_differ(capsys):
+    """The check is at U_r = U_w: a case whose web slides (a 0.7 % draw) is not an idler;
+    the verdict says so and the mu line names the sliding speed its traction is at."""
+    assert main(["solve", "idler", "--model", "closed-form", "--set", "web.speed=9.93"]) == 0
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if "idler" in ln and "margin" in ln)
+    assert "here the web slides at U_s = 0.07 m/s" in line and "an idler would" in line
+    mu_line = next(ln for ln in out.splitlines() if ln.strip().startswith("mu = "))
+    assert "the traction at the sliding speed U_s = 0.07 m/s" in mu_line
+    assert main(["solve", "idler", "--model", "closed-form"]) == 0   # U_r = U_w: as before
+    out = capsys.readouterr().out
+    line = next(ln for ln in out.splitlines() if "idler" in ln and "margin" in ln)
+    assert line.startswith("  idler ") and "an idler would" not in line

@@ -14,7 +14,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "webfem"
 #: Bottom (0) to top. A module may import its own layer and those below.
 LAYERS = [
     {"errors", "validated", "units", "progress", "sections", "keys", "case", "sweepspec",
-     "files", "bundled", "cores",
+     "files", "bundled", "cores", "line_speed",
      "physics"},
     {"fem"},
     {"summary", "result", "describe"},

@@ -581,3 +581,32 @@ def test_a_worker_that_dies_is_walked_here(monkeypatch):
 def test_full_scan_must_be_a_bool():
     with pytest.raises(webfem.InputError, match="full_scan"):
         traction_loss_speed(Case(), 0.1, "closed-form", full_scan="no")
+
+
+def test_calibration_states_a_positive_constant_it_cannot_bound_honestly(tmp_path, capsys):
+    """A 5-row newsprint rig (new-user trial 36) leaves C's linear interval (0.194 +- 1.56
+    m/s) reaching below 0: the CLI says C is not determined, gives its interval in log space
+    (positive) and rounds each estimate to its standard error, not to six digits."""
+    import json
+
+    from webfem.cli import main
+
+    data = tmp_path / "rig.csv"
+    data.write_text("roller_speed,tension,wrap_deg,delta_T\n2.0,80,60,22.1\n5.0,80,60,21.0\n"
+                    "10.0,80,60,19.5\n15.0,80,60,15.2\n20.0,80,60,11.0\n", encoding="utf-8")
+    args = ["calibrate", str(data), "--case", "base", "--model", "fe1d"]
+    assert main(args + ["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    C, half = out["estimates"]["speed_constant"], out["ci95"]["speed_constant"]
+    low, high = out["interval95"]["speed_constant"]
+    assert half > C > 0.0 and 0.0 < low < C < high         # linear reaches below 0; log not
+    assert low * high == pytest.approx(C * C, rel=1e-9)     # symmetric in ln C
+    assert any("speed_constant is not determined" in n for n in out["notes"])
+    mu_low, mu_high = out["interval95"]["mu_cc"]
+    assert mu_low < out["estimates"]["mu_cc"] < mu_high
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    line = next(ln for ln in text.splitlines() if ln.strip().startswith("speed_constant"))
+    assert f"{C:.6g}" not in line and "not determined" in line and "+-" not in line
+    mu_line = next(ln for ln in text.splitlines() if ln.strip().startswith("mu_cc"))
+    assert f"{out['estimates']['mu_cc']:.6g}" not in mu_line and "+-" in mu_line

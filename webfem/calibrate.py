@@ -8,7 +8,11 @@ measured quantity. The gap of each row is solved once (friction does not feed ba
 unless sigma is fitted, which re-solves the FE gaps at every trial sigma).
 
 Confidence intervals come from the linearised covariance s^2 (J^T J)^-1 with s^2 the residual
-variance, and Student's t with n - p degrees of freedom. A constant the data cannot identify
+variance, and Student's t with n - p degrees of freedom. Every constant is positive, so its
+interval is stated in log space too (``interval95``: p exp(-+t se/p), the same
+linearisation in ln p, which never reaches below 0); where the linear one (``ci95``, the
+half width) would reach below 0 the constant is not determined by the data and a note says
+so (a 5-row newsprint rig fitted C = 0.19 +- 1.56 m/s). A constant the data cannot identify
 (the predictions do not change with it, or change only together with another constant, e.g.
 C without rows at several roller speeds) is reported with no interval and a note saying why.
 
@@ -55,6 +59,8 @@ COLUMN_ALIASES = {"roller_speed": "roller.speed", "speed": "roller.speed",
                   "width": "web.width", "radius": "roller.radius", "web_speed": "web.speed"}
 #: The measured quantities a row may carry (one of them, the same in every row).
 MEASURED = {"delta_T": "tension increase before slip [N/m]", "mu": "friction coefficient [-]"}
+#: The constants' units in notes (SI).
+_UNITS = {"mu_cc": "", "speed_constant": " m/s", "sigma": " m"}
 #: How to make the data identify each constant.
 _HINTS = {"mu_cc": "rows where asperity contact carries load (low speeds)",
           "speed_constant": "rows at several roller speeds in boundary or mixed lubrication",
@@ -69,7 +75,8 @@ class Calibration:
     constant's name to a number; ``stderr`` and ``ci95`` are None for a constant the data
     cannot identify (``identified`` False; ``notes`` says why). ``observed``,
     ``predicted``, ``residuals`` per row in the ``measured`` quantity; ``cases`` the rows'
-    cases. ``fit["estimates"]`` reads a field too.
+    cases. ``interval95``: each constant's 95 % interval in log space (the constants are
+    positive); :meth:`determined` says whether the data bound a constant away from 0. ``fit["estimates"]`` reads a field too.
     """
 
     model: str
@@ -89,6 +96,15 @@ class Calibration:
     notes: tuple = ()
     #: The model that answered each row (auto chooses per row, once: see :func:`calibrate`).
     models_used: tuple = ()
+    #: Each constant's 95 % interval ``(low, high)`` in log space, p exp(-+t se/p): positive
+    #: as the constant is (None where ``ci95`` is None).
+    interval95: dict = dataclasses.field(default_factory=dict)
+
+    def determined(self, name: str) -> bool:
+        """Whether the data bound ``name`` away from 0: identified, and its linear 95 %
+        interval (estimate +- ``ci95``) stays above 0."""
+        half = self.ci95.get(name)
+        return half is not None and half < self.estimates[name]
 
     def __getitem__(self, key: str):
         if not isinstance(key, str) or key not in {f.name for f in dataclasses.fields(self)}:
@@ -118,7 +134,7 @@ class Calibration:
 
         keys = ("model", "measured", "estimates", "stderr", "ci95", "identified", "rms",
                 "dof", "converged", "message", "observed", "predicted", "residuals",
-                "models_used")
+                "models_used", "interval95")
         out = {k: plain(getattr(self, k), k) for k in keys}
         out["notes"] = notes
         return out
@@ -376,6 +392,18 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
         t95 = float(student_t.ppf(0.975, dof))
         for j, v in zip(keep, np.sqrt(np.maximum(np.diag(cov), 0.0))):
             se[names[j]], half[names[j]] = float(v), t95 * float(v)
+    interval = dict.fromkeys(names)
+    for j in keep:
+        name, v = names[j], float(p[j])
+        spread = math.exp(half[name] / v)   # ln p +- t se / p
+        interval[name] = (v / spread, v * spread)
+        if half[name] >= v:
+            low, high = interval[name]
+            unit = _UNITS[name]
+            notes.append(f"{name} is not determined by these data: its linear 95 % interval "
+                         f"({v:.2g} +- {half[name]:.2g}{unit}) reaches below 0, and in log "
+                         f"space it spans {low:.2g} to {high:.2g}{unit}, a factor "
+                         f"{spread:.2g} either way; add {_HINTS[name]}")
     if s2 == 0.0 and keep:
         notes.append("the fit is exact (zero residuals): the intervals are 0 because the "
                      "data show no scatter, not because the constants are known exactly")
@@ -385,4 +413,5 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
         observed=obs, predicted=obs + res, residuals=res,
         rms=float(np.sqrt(np.mean(res**2))), dof=dof, converged=bool(fit.success),
         message=str(fit.message), cases=tuple(cases), notes=tuple(notes),
-        models_used=tuple(name for name, _ in chosen) if chosen else (model,) * len(cases))
+        models_used=tuple(name for name, _ in chosen) if chosen else (model,) * len(cases),
+        interval95=interval)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from .physics.effects import margin_range, margin_verdict
 
-__all__ = ["describe", "verdict", "error_text", "resting_text", "contact_gap_text", "level_words",
-           "regime_text"]
+__all__ = ["describe", "verdict", "traction_text", "error_text", "resting_text",
+           "contact_gap_text", "level_words", "regime_text"]
 
 _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
           "contact_share": "contact share"}
@@ -93,21 +93,46 @@ CONTACT_NOTED = 0.005
 def verdict(s, case=None) -> str:
     """The idler's one-line answer from a summary with an idler check; with the ``case``,
     ``unsure`` where mu's stated error puts the margin on both sides of 1
-    (:func:`webfem.physics.effects.margin_range`)."""
+    (:func:`webfem.physics.effects.margin_range`).
+
+    The check is at the onset of slip, U_r = U_w. Where the case's speeds differ the web
+    already slides on the roller, which is then driven (or slipping), not an idler turning
+    with the web: the line says so and words the verdict as what an idler would do.
+    """
+    sliding = case is not None and case.U_slide != 0.0 and case.web.speed > 0.0
+    head = (f"  idler check at the onset of slip (U_r = U_w; here the web slides at U_s = "
+            f"{case.U_slide:.4g} m/s, so this roller is driven or already slipping, not an "
+            "idler turning with the web): an idler would " if sliding else "  idler ")
     if case is not None and s.error_mu is not None:
         low, high = margin_range(case, s.delta_T_required, s.mu_onset, s.error_mu)
         if margin_verdict(low, high) == "unsure":
-            return (f"  idler unsure: margin {s.slip_margin:.2g}, but mu's stated error allows "
+            return (f"{head}{'be ' if sliding else ''}unsure: margin {s.slip_margin:.2g}, but "
+                    f"mu's stated error allows "
                     f"{low:.2g} to {high:.2g} (needs {s.delta_T_required:.3g} N/m, can carry "
                     f"{s.delta_T_available:.3g} N/m at mu_onset {s.mu_onset:.3g}); a finer "
                     "model decides")
     if s.slip_margin >= 1.0:
-        return (f"  idler holds with margin {s.slip_margin:.2g} (needs {s.delta_T_required:.3g}"
-                f" N/m, can carry {s.delta_T_available:.3g} N/m at mu_onset "
-                f"{s.mu_onset:.3g})")
-    return (f"  idler slips: needs {s.delta_T_required:.3g} N/m, can carry "
-            f"{s.delta_T_available:.3g} N/m (margin {s.slip_margin:.2g}, mu_onset "
+        return (f"{head}{'hold' if sliding else 'holds'} with margin {s.slip_margin:.2g} "
+                f"(needs {s.delta_T_required:.3g} N/m, can carry {s.delta_T_available:.3g} "
+                f"N/m at mu_onset {s.mu_onset:.3g})")
+    return (f"{head}{'slip' if sliding else 'slips'}: needs {s.delta_T_required:.3g} N/m, "
+            f"can carry {s.delta_T_available:.3g} N/m (margin {s.slip_margin:.2g}, mu_onset "
             f"{s.mu_onset:.3g})")
+
+
+def traction_text(s, case) -> str:
+    """What the headline mu and delta_T are: the onset traction where nothing slides, the
+    traction at the sliding speed where a moving web slides (the two differ, see
+    docs/model.md, "Traction at a slip and at the onset of slip"); "" in the paper's rig."""
+    if s.mu_film is not None:
+        return (": the traction available at the onset of slip (nothing slides, U_s = 0; "
+                "mu_onset = mu_cc x contact share)")
+    if case.web.speed > 0.0 and case.U_slide > 0.0:
+        return (f": the traction at the sliding speed U_s = {case.U_slide:.4g} m/s (Eq. 29's "
+                "boundary friction (2/pi) mu_cc atan(U_s/C) falls to 0 with U_s; the traction "
+                "available at the onset of slip, mu_cc x contact share, is another number: "
+                "docs/model.md)")
+    return ""
 
 
 def judged_text(s) -> str:
@@ -135,8 +160,7 @@ def describe(result) -> str:
         + (f" ({resting_text(s)})" if resting_text(s) else ""),
         regime_text(s, c),
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
-        + (": the traction available at the onset of slip (nothing slides, U_s = 0; "
-           "mu_onset = mu_cc x contact share)" if s.mu_film is not None else ""),
+        + traction_text(s, c),
         *([f"  the film's own drag at these speeds (its pressure-driven shear): mu_film = "
            f"{s.mu_film:.4f}, delta_T_film = {s.delta_T_film:.3f} N/m"]
           if s.mu_film is not None else []),

@@ -34,6 +34,7 @@ from typing import Callable, Sequence
 from .api import solve
 from .case import Case
 from .errors import ConvergenceError, InputError, NoAdmissibleSolution, ValidityWarning
+from .line_speed import at_speed, ratio_text, speed_ratio
 from .models.groove_domain import sag_warning
 from .models.registry import make_options
 from .sweeps.keyed import run_points
@@ -52,7 +53,8 @@ DEFAULT_LAND_FRACTIONS = (0.5, 0.65, 0.8, 0.9)
 #: Groove depth [m] of the map (Walker's 0.25 mm).
 DEFAULT_DEPTH = 0.25e-3
 #: Map speeds unless told, as multiples of the case's roller speed: the case's, and twice it
-#: for the margin of a faster line (20 and 40 m/s on the base case).
+#: for the margin of a faster line (20 and 40 m/s on the base case); the web follows at the
+#: case's ratio U_w/U_r (:func:`webfem.line_speed.at_speed`).
 DEFAULT_SPEED_FACTORS = (1.0, 2.0)
 #: The traction-loss grid (each geometry is a root find of about 14 fe2d solves: a smaller
 #: grid than the map's).
@@ -153,7 +155,10 @@ def _grooved(case: Case, pitch: float, land: float, depth: float) -> Case:
 def _signature(kind: str, case: Case, opts, points: int, **grid) -> dict:
     """What makes two runs the same table (JSON-ready; also the lock's description)."""
     from . import __version__
-    return {"table": kind, "parameter": kind, "model": "fe2d", "points": points,
+    # a moving web follows the roller since the line speed module: a store made with the
+    # web speed fixed must not be resumed (a web at rest, ratio 0, answers as before)
+    moved = {"web": "at the case's ratio to the roller"} if speed_ratio(case) else {}
+    return {**moved, "table": kind, "parameter": kind, "model": "fe2d", "points": points,
             "case": case.to_dict(), "webfem": __version__,
             "options": json.loads(json.dumps(opts.changed(), sort_keys=True, default=str)),
             **{k: [float(v) for v in vs] if isinstance(vs, (list, tuple)) else vs
@@ -206,7 +211,8 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
     mu_min : float
         Traction needed, > 0 and < 10: marks the feasible designs.
     speeds : sequence of float, optional
-        Roller speeds [m/s]; default :data:`DEFAULT_SPEED_FACTORS` times the case's.
+        Roller speeds [m/s]; default :data:`DEFAULT_SPEED_FACTORS` times the case's. The web
+        follows at the case's ratio U_w/U_r (:func:`webfem.line_speed.at_speed`).
     pitches, land_fractions, depths : sequences of float
         The grid: pitches and depths [m] > 0, land fractions a/pitch in (0, 1).
     options : FE2DOptions or dict, optional
@@ -243,6 +249,11 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
                              land_fractions=land_fractions, depths=depths)
     opts = make_options("fe2d", options)
     workers = check_workers(workers)
+    for s in speeds:   # refused before anything is solved, naming the speed
+        try:
+            at_speed(case, s)
+        except InputError as err:
+            raise InputError(f"roller speed {s:g} m/s ({ratio_text(case)}): {err}") from None
     designs = [(s, p, p * (1.0 - f), d, f) for s in speeds for p in pitches
                for f in land_fractions for d in depths]
 
@@ -268,7 +279,8 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
 def _design_row(case: Case, opts, designs, n: int) -> dict:
     """The map's row of design ``n`` (a module function: the workers' task)."""
     speed, pitch, width, depth, land = designs[n]
-    c = _grooved(case, pitch, land, depth).updated({"roller.speed": speed})
+    # the line moves: the web keeps the case's ratio to the roller (webfem.line_speed)
+    c = at_speed(_grooved(case, pitch, land, depth), speed)
     out = {"speed": speed, "pitch": pitch, "width": width, "depth": depth,
            "land_fraction": c.land_fraction, "converged": False}
     try:
@@ -320,7 +332,8 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
     Parameters
     ----------
     case : Case
-        The line; its roller speed is scanned, its groove keys replaced.
+        The line; its roller speed is scanned (the web at the case's ratio U_w/U_r), its
+        groove keys replaced.
     mu_min : float
         The traction threshold, > 0 and < 10.
     pitches, land_fractions : sequences of float

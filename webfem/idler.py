@@ -23,6 +23,7 @@ import numpy as np
 from .api import solve_along
 from .case import Case
 from .errors import InputError
+from .line_speed import at_speed
 from .physics.effects import margin_range, margin_verdict
 
 __all__ = ["MarginCurve", "margin_curve"]
@@ -90,9 +91,22 @@ class MarginCurve:
         return f"{self.model}: " + ", ".join(f"{m} at {n}" for m, n in counts.items()) \
             + " speeds"
 
+    def slip_extent(self) -> str:
+        """Where the answered speeds slip (margin below 1): ``every`` speed tried,
+        ``lowest`` (the lowest answered speed, not all of them: where it starts slipping
+        lies below the range), ``above`` (it holds at the lowest and slips above
+        :meth:`slip_speed`), ``none`` (it holds at every answered speed) or ``unanswered``."""
+        ok = np.asarray(self.converged, bool)
+        m = np.asarray(self.slip_margin, float)[ok]
+        if m.size == 0:
+            return "unanswered"
+        below = m < 1.0
+        return ("every" if below.all() else "lowest" if below[0] else "above" if below.any()
+                else "none")
+
     def slip_speed(self) -> float | None:
         """The first line speed where the margin falls below 1 (linear interpolation), or
-        None when the idler holds over the whole range."""
+        None when the idler holds at every answered speed."""
         # only answers count: an unconverged solve's margin is no evidence either way
         ok = np.asarray(self.converged, bool)
         m = np.asarray(self.slip_margin, float)[ok]
@@ -114,7 +128,8 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
         raise InputError("the case states no idler load: set roller.drag_torque [N m] or "
                          "roller.inertia [kg m^2] with web.acceleration [m/s^2]")
     speeds = [float(u) for u in speeds]
-    cases = [case.updated({"roller.speed": u, "web.speed": u}) for u in speeds]
+    # the check is at the onset of slip: the line moves with U_r = U_w (webfem.line_speed)
+    cases = [at_speed(case, u, ratio=1.0) for u in speeds]
     keys = ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")
     if model == "fitted":
         # its domain moves with the speed: a speed outside it has no answer (NaN), the

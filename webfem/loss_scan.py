@@ -1,4 +1,5 @@
-"""The traction-loss search's solves: the scan of roller speeds and the root find after it.
+"""The traction-loss search's solves: the scan of roller speeds (the web at the case's ratio
+U_w/U_r, :func:`webfem.line_speed.at_speed`) and the root find after it.
 
 :func:`scan` walks the speeds upwards with continuation and stops at the first crossing (a
 speed where mu is below the threshold after having reached it): the speeds above cannot
@@ -20,6 +21,7 @@ from threadpoolctl import threadpool_limits
 from .api import solve_along
 from .case import Case
 from .errors import ConvergenceError
+from .line_speed import at_speed
 from .models.options import Options
 
 __all__ = ["scan", "refine", "crossing", "LOW_SHARE"]
@@ -101,7 +103,8 @@ def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
     """:func:`scan`'s serial walk: ``(results, None)``, or the results before a solve that
     raised and its error (a ConvergenceError naming its speed): returned, so a worker sends
     it back with the results before it."""
-    cases = [case.updated({"roller.speed": float(u)}) for u in speeds]
+    # the line moves: the web keeps the case's ratio to the roller (webfem.line_speed)
+    cases = [at_speed(case, float(u)) for u in speeds]
     out: list = []
     try:
         for res in solve_along(cases, model, opts, keep_failures=False, initial=initial):

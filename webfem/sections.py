@@ -249,8 +249,9 @@ class Web(Section):
         "isothermal", "paper", doc="Darcy sink (12 k/t) ((p + p_a)/2) (p - p_a), or the "
         "paper's (12 k/t) p (p - p_a)"))
     acceleration: float = field(default=0.0, metadata=_num(
-        "m/s^2", doc="line acceleration a (idler slip check: J a / R of torque; < 0 when "
-        "the line slows down)", real=(-1e3, 1e3)))
+        "m/s^2", doc="line acceleration a (idler slip check: the web supplies |M_d + J a / "
+        "R| of torque; < 0 when the line slows down, the roller's inertia then helping the "
+        "drag)", real=(-1e3, 1e3)))
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ import numpy as np
 from .case import Case
 from .errors import InputError
 from .keys import key_meta
+from .line_speed import at_speed, ratio_text, speed_ratio, top_speed
 from .loss_scan import refine, scan
 from .models.options import Options
 from .models.registry import make_options, model_spec
@@ -52,7 +53,8 @@ class TractionLoss:
     where the scan stopped). ``out["speed"]`` reads a field too.
     ``model_used``: the model that answered at the speed found (else at the peak): auto's
     choice there, or ``model`` itself; ``models_used``: every model that answered a solve
-    of the search, in the order first used.
+    of the search, in the order first used. ``web_speed_ratio``: U_w/U_r kept at every
+    scanned speed (:mod:`webfem.line_speed`; None: the roller at rest, the web speed kept).
     """
 
     speed: float | None
@@ -66,6 +68,7 @@ class TractionLoss:
     model_used: str | None = None
     models_used: tuple[str, ...] = ()
     scanned: tuple[float, float] | None = None
+    web_speed_ratio: float | None = None
 
     def answered(self) -> str:
         """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
@@ -117,13 +120,17 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     Parameters
     ----------
     case : Case
-        The operating point; its roller speed is scanned, the web speed kept.
+        The operating point; its roller speed U_r is scanned with the web following at the
+        case's ratio U_w/U_r (:func:`webfem.line_speed.at_speed`: the line moves; the
+        paper's rig, web at rest, stays at rest).
     mu_min : float
         Friction threshold, > 0.
     model : str
         A model of :data:`webfem.models.registry.MODELS`.
     speed_range : (float, float)
-        Roller speeds scanned, 0 <= low < high [m/s].
+        Roller speeds scanned, 0 <= low < high [m/s]; a web whose speed rises with the
+        roller's is scanned only below the speed at which it can no longer be held on the
+        roller (:func:`webfem.line_speed.top_speed`; the message says so).
     n_scan : int
         Points of the logarithmic scan (at least 3).
     xtol : float
@@ -172,11 +179,18 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     if not isinstance(full_scan, bool):
         raise InputError(f"full_scan = {full_scan!r} is not valid: must be True or False")
     opts = make_options(model, options, **values)
-    note = ""
+    note = capped = ""
+    top, why = top_speed(case, hi)
+    if why:   # the line flies off the roller or out of the thin-film bound above ``top``
+        if top <= lo:
+            raise InputError(f"speed range = {speed_range!r} is out of range: at U_r = "
+                             f"{max(lo, 1e-3):g} m/s ({ratio_text(case)}) {why}")
+        hi = top
+        capped = f" (the scan ends at U_r = {top:.4g} m/s: above it {why})"
     if model == "fitted":       # scan the speeds its domain holds (it refuses the others)
         lo_in, hi_in = fitted_speed_range(case, max(lo, 1e-3), hi)
         if (lo_in, hi_in) != (max(lo, 1e-3), hi):
-            note = (f" (the fitted model's domain limits the scan to {lo_in:.4g}..{hi_in:.4g}"
+            note += (f" (the fitted model's domain limits the scan to {lo_in:.4g}..{hi_in:.4g}"
                     " m/s)")
         lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
@@ -190,17 +204,22 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     found = dict(model=model, mu_min=float(mu_min), mu_peak=float(mu[i_peak]),
                  speed_peak=float(speeds[i_peak]), evaluations=solved, bracket=None,
                  speed=None, model_used=_used(results[i_peak]), models_used=tuple(used),
-                 scanned=(float(speeds[0]), float(speeds[len(results) - 1])))
+                 scanned=(float(speeds[0]), float(speeds[len(results) - 1])),
+                 web_speed_ratio=speed_ratio(case))
     if len(results) < n_scan:
         note = (f" (the scan stopped at {speeds[len(results) - 1]:.4g} m/s, its first speed "
                 f"below it){note}")
+    else:   # the scan reached its top: say why that is below the range asked for
+        note = f"{capped}{note}"
+    note = f"{note}; {ratio_text(case)}"
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
-            f"mu stays below {mu_min:g} at every speed in {lo:g}..{hi:g} m/s (peak "
+            f"mu stays below {mu_min:g} at every speed in {lo:.4g}..{hi:.4g} m/s (peak "
             f"{mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s){note}"))
     after = np.nonzero(mu[i_peak:] < mu_min)[0]
     if after.size == 0:
-        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:g} m/s{note}")
+        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:.4g} m/s"
+                                          f"{note}")
     j = i_peak + int(after[0])
     a, b = float(speeds[j - 1]), float(speeds[j])
     if refined is not None and refined[0] == (a, b):   # a worker's, while the scan went on
@@ -236,7 +255,7 @@ def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[
     cases, where = [], []
     for j, u in enumerate(grid):
         try:
-            cases.append(case.updated({"roller.speed": float(u)}))
+            cases.append(at_speed(case, float(u)))
             where.append(j)
         except InputError:
             pass
@@ -261,9 +280,11 @@ def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[
 
 def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = None
              ) -> tuple[np.ndarray, np.ndarray]:
-    """mu against roller speed: ``(speeds, mu)``, walked with continuation; a point without
-    an answer (not converged, a case the model does not hold at that speed, outside the
-    fitted model's domain) is NaN: a gap in a chart's line, not the end of the chart.
+    """mu against roller speed: ``(speeds, mu)``, walked with continuation (the web at the
+    case's ratio U_w/U_r, :func:`webfem.line_speed.at_speed`); a point without an answer (not
+    converged, a case the model does not hold at that speed, a speed at which the web cannot
+    be held, outside the fitted model's domain) is NaN: a gap in a chart's line, not the end
+    of the chart.
 
     >>> u, mu = mu_curve(Case(), "closed-form", [2.0, 30.0])
     >>> bool(mu[0] > mu[1])   # air lifts the web: traction falls with speed
@@ -272,10 +293,13 @@ def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = No
     from .api import solve_many
 
     speeds = np.asarray(speeds, float)
+    top = top_speed(case, float(speeds.max()))[0] if speeds.size else np.inf
     cases, where = [], []
     for j, u in enumerate(speeds):
+        if u > top:     # the web flies off the roller there: no answer
+            continue
         try:
-            cases.append(case.updated({"roller.speed": float(u)}))
+            cases.append(at_speed(case, float(u)))
             where.append(j)
         except InputError:
             pass

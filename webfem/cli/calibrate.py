@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -19,14 +20,32 @@ def add_parser(subparsers) -> None:
     add_case_arguments(p, positional=False)
     p.add_argument("--fit-sigma", action="store_true", help="also fit the web roughness sigma")
     p.add_argument("--json", action="store_true",
-                   help="estimates, errors, residuals and notes as JSON")
+                   help="estimates, errors (stderr; ci95: the 95 %% half widths; "
+                        "interval95: the 95 %% intervals in log space, positive as the "
+                        "constants are), residuals and notes as JSON")
     p.add_argument("--out", metavar="DIR", help="write the measured-against-predicted chart")
     add_units_argument(p)
 
 
+def rounded(value: float, spread: float | None) -> str:
+    """``value`` to the digits its ``spread`` (a standard error) leaves meaningful: two
+    significant digits of the spread (0.194082 with 0.49 -> ``0.19``; 0.239491 with
+    0.0247 -> ``0.239``); six significant digits without a spread.
+
+    >>> rounded(0.194082, 0.49), rounded(0.239491, 0.0247), rounded(0.3, None)
+    ('0.19', '0.239', '0.3')
+    """
+    if spread is None or not spread > 0.0 or value == 0.0 or not math.isfinite(value):
+        return f"{value:.6g}"
+    digits = math.floor(math.log10(abs(value))) - math.floor(math.log10(spread)) + 2
+    return f"{value:.{min(max(digits, 1), 6)}g}"
+
+
 def _pm(fit, name: str, units: str = "si") -> str:
-    """An estimate with its 95 % interval and standard error, in ``units`` when it has a
-    unit (speed_constant, sigma)."""
+    """An estimate rounded to its standard error, with its 95 % interval and standard
+    error, in ``units`` when it has a unit (speed_constant, sigma). The interval is the
+    linear one (estimate +- half width) where it stays above 0 and the log-space one where
+    it would not (then the constant is not determined by the data: a note says so)."""
     role = ROLES.get(name)
     unit = f" {unit_label(role, units)}" if role else ""
 
@@ -36,7 +55,12 @@ def _pm(fit, name: str, units: str = "si") -> str:
     value, half, se = (shown(d[name]) for d in (fit.estimates, fit.ci95, fit.stderr))
     if half is None:
         return f"{value:.6g}{unit} (not identified by these data; see the note)"
-    return f"{value:.6g} +- {half:.3g}{unit} (95 %), std. error {se:.3g}{unit}"
+    if fit.determined(name):
+        return (f"{rounded(value, se)} +- {half:.2g}{unit} (95 %), std. error "
+                f"{se:.2g}{unit}")
+    low, high = (shown(v) for v in fit.interval95[name])
+    return (f"{rounded(value, se)}{unit}, not determined: 95 % interval {low:.2g} to "
+            f"{high:.2g}{unit} (log space; std. error {se:.2g}{unit}; see the note)")
 
 
 def run(args) -> int:

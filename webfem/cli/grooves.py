@@ -96,8 +96,10 @@ def add_parser(subparsers) -> None:
                     "Solve the grooved 2-D film (fe2d) for each groove design (pitch x land "
                     "fraction x depth) at each roller speed and mark the designs that keep "
                     "mu >= --mu-min; the recommended one has the largest land fraction "
-                    "(contact area). Writes CASE_grooves.csv and .png into --out; each design "
-                    "is saved as it finishes, so a run that is interrupted (Ctrl-C, kill) "
+                    "(contact area). A speed moves the line: the web follows the roller at "
+                    "the case's ratio U_w/U_r (at rest in the paper's rig, at U_r on an "
+                    "idler; the web speed used to stay fixed). Writes CASE_grooves.csv and "
+                    ".png into --out; each design is saved as it finishes, so a run that is interrupted (Ctrl-C, kill) "
                     "continues where it stopped when run again with the same arguments.", 88),
         epilog=textwrap.fill("With --loss-speed it also finds, for each pitch in --loss-pitches and land "
                "fraction in --loss-lands (at the first --depths), the roller speed at which "
@@ -114,7 +116,8 @@ def add_parser(subparsers) -> None:
                    help="fe2d option, e.g. --opt level=1")
     p.add_argument("--mu-min", type=float, required=True, help="friction needed, e.g. 0.2")
     p.add_argument("--speed", type=speed_value, action="append",
-                   help="roller speed (m/s or with a unit, e.g. '1000 m/min'); repeat for "
+                   help="roller speed (m/s or with a unit, e.g. '1000 m/min'), the web at the "
+                        "case's ratio U_w/U_r; repeat for "
                         "several (default: the case's speed times "
                         + " and ".join(f"{f:g}" for f in DEFAULT_SPEED_FACTORS)
                         + ", for the margin of a faster line: "

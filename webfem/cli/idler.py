@@ -91,20 +91,23 @@ def _table(curve, units: str) -> str:
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]
+    extent = curve.slip_extent()
     answered = [u for u, ok in zip(curve.speeds, curve.converged) if ok]
-    if slip is not None and slip <= answered[0]:
-        # slipping at the lowest speed answered is no onset: "above about" would say it holds
-        # below it, which nothing here shows
-        lines.append(f"  the idler slips at every speed from {display(slip, 'speed', units, 3)}"
-                     " (already at the lowest speed answered)"
-                     + (" (by the margins; their stated ranges leave it unsure)"
-                        if unsure else ""))
+    tried = (f"{display(answered[0], 'speed', units, 3)} to "
+             f"{display(answered[-1], 'speed', units, 3)}" if answered else "")
+    hedge = " (by the margins; their stated ranges leave it unsure)" if unsure else ""
+    if extent == "every":   # no speed tried holds: where it starts slipping is below them
+        lines.append(f"  the idler slips at every speed tried ({tried}){hedge}")
+    elif extent == "lowest":
+        lines.append(f"  the idler slips at the lowest speed tried, "
+                     f"{display(answered[0], 'speed', units, 3)} (where it starts slipping "
+                     f"lies below the speeds tried), and holds at some above: see the "
+                     f"table{hedge}")
     elif slip is not None:
         lines.append(f"  the idler slips above about {display(slip, 'speed', units, 3)}"
-                     + (" (by the margins; their stated ranges leave it unsure)"
-                        if unsure else ""))
+                     + hedge)
     elif not unsure and all(v == "holds" for v in verdicts):
-        lines.append("  the idler holds over the whole range")
+        lines.append(f"  the idler holds at every speed tried ({tried})")
     elif not unsure and "holds" in verdicts:
         lines.append("  the idler holds wherever an answer was found")
     elif not unsure:

@@ -4,6 +4,7 @@ of that speed against the paper's operating parameters."""
 from __future__ import annotations
 
 import sys
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +31,14 @@ DEFAULT_WORKERS = 2
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser("traction-loss",
                               help="roller speed at which mu falls below a threshold",
+                              description=textwrap.fill(
+                                  "Scan the line's speed: the roller speed U_r with the web "
+                                  "following at the case's ratio U_w/U_r (at rest in the "
+                                  "paper's rig, at U_r on an idler, 0.99 U_r for a 1 % draw; "
+                                  "the web speed used to stay fixed, adding a sliding speed "
+                                  "the line does not have), up to where the web can no "
+                                  "longer be held or the thin-film model holds no more; "
+                                  "report where mu falls below --mu-min after its peak.", 88),
                               formatter_class=HELP_FORMATTER, epilog=options_epilog())
     add_case_arguments(p, default_model=DEFAULT_MODEL)
     p.add_argument("--mu-min", type=float, required=True, help="friction threshold, e.g. 0.1")
@@ -39,8 +48,10 @@ def add_parser(subparsers) -> None:
     p.add_argument("--max-speed", type=speed_value, default=SPEED_RANGE[1],
                    help=f"scan to (m/s or with a unit; default {SPEED_RANGE[1]:g} m/s)")
     p.add_argument("--json", action="store_true",
-                   help="one JSON object: speed (m/s, null if none), model, mu_min, mu_peak, "
-                        "speed_peak, bracket, scanned, evaluations, message; units: SI)")
+                   help="one JSON object: speed (U_r in m/s, null if none), model, mu_min, "
+                        "mu_peak, speed_peak, bracket, scanned, evaluations, message, "
+                        "web_speed_ratio (U_w/U_r kept; null: roller at rest, web speed "
+                        "kept); units: SI)")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR: each over the paper's range where that "

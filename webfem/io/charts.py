@@ -381,14 +381,20 @@ def save_figure(fig, path, dpi: int = 110) -> Path:
 _save = save_figure
 
 
-def _pm(value, half, role=None, units="si") -> str:
-    """``value +- half`` (in ``units`` with a ``role``) or, when the data cannot bound it,
-    the value alone."""
+def _pm(value, half, role=None, units="si", interval=None) -> str:
+    """``value +- half`` (in ``units`` with a ``role``); where that would reach below 0 the
+    log-space ``interval`` (the constants are positive: ``value (low-high)``); when the
+    data cannot bound it, the value alone."""
     unit = f" {unit_label(role, units)}" if role else ""
     if role:
         value, half = (None if v is None else convert(v, role, units) for v in (value, half))
-    return (f"{value:.4g} +- {half:.2g}{unit}" if half is not None
-            else f"{value:.4g}{unit} (not identified)")
+        if interval is not None:
+            interval = [convert(v, role, units) for v in interval]
+    if half is None:
+        return f"{value:.4g}{unit} (not identified)"
+    if half >= value and interval is not None:
+        return f"{value:.2g}{unit} ({interval[0]:.2g} to {interval[1]:.2g}: not determined)"
+    return f"{value:.4g} +- {half:.2g}{unit}"
 
 
 def calibration_chart(fit: dict, path, units: str = "si") -> Path:
@@ -414,7 +420,11 @@ def calibration_chart(fit: dict, path, units: str = "si") -> Path:
         used = []
     model = fit["model"] + (f": {', '.join(used)}" if used and used != [fit["model"]] else "")
     a.set_ylabel(f"predicted {name} ({model})")
-    est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k], ROLES.get(k), units)}"
+    try:   # a mapping written before the log-space intervals may not have them
+        intervals = fit["interval95"] or {}
+    except KeyError:
+        intervals = {}
+    est = ", ".join(f"{k} = {_pm(v, fit['ci95'][k], ROLES.get(k), units, intervals.get(k))}"
                     for k, v in fit["estimates"].items() if v is not None)
     a.set_title(est + " (95 %)", fontsize=8)
     b.plot(speed, display_values(fit["residuals"], role, units), "o", ms=4)

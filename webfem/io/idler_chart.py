@@ -60,15 +60,17 @@ def idler_chart(curve, path, title: str = "", units: str = "si") -> Path:
     b.text(0.02, 1.25, "holds", color="C2", fontsize=8, va="bottom", transform=edge)
     slip = curve.slip_speed()
     b.set_xlim(u[0] - 0.04 * (u[-1] - u[0]), u[-1] + 0.04 * (u[-1] - u[0]))
-    if slip is not None:
+    extent = curve.slip_extent()
+    if extent in ("every", "lowest"):   # no speed tried marks where it starts slipping
+        b.annotate("slips at every speed shown" if extent == "every" else
+                   "slips at the lowest speed shown", (0.02, 0.97), xycoords="axes fraction",
+                   fontsize=8, color="C3", va="top", ha="left")
+    elif slip is not None:
         at = convert(slip, "speed", units)
         b.axvline(at, color="C3", lw=0.8, ls=":")
         x0, x1 = b.get_xlim()
         right = (at - x0) < 0.6 * (x1 - x0)
-        # slipping at the lowest speed is no onset: it slips all along the range
-        text = ("slips at every speed shown" if slip <= curve.speeds[0] else
-                f"slips above {display(slip, 'speed', units, 3)}")
-        b.annotate(text, (at, 0.97),
+        b.annotate(f"slips above {display(slip, 'speed', units, 3)}", (at, 0.97),
                    xycoords=b.get_xaxis_transform(), xytext=(4 if right else -4, 0),
                    textcoords="offset points", fontsize=8, color="C3", va="top",
                    ha="left" if right else "right")

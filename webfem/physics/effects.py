@@ -40,6 +40,7 @@ from .friction import delta_T_from_mu
 
 __all__ = ["MU_SCALE", "margin_range", "margin_verdict", "EFFECTS", "SWITCH_OFF",
            "CLOSED_FORM_CARRIES", "included", "left_out", "idler_check", "idler_torque",
+           "states_load",
            "traction_summary", "traction_summaries"]
 
 #: Every effect, in the order tables list them.
@@ -78,8 +79,9 @@ def idler_check(case, mu_onset: float) -> dict:
     """Traction an undriven roller needs against what it can carry (physics.md, "Will an
     idler slip?").
 
-    delta_T_required = (M_d + J |a| / R) / (R L) [N/m]: the bearing and seal drag and the
-    roller's angular acceleration per unit web width. delta_T_available =
+    delta_T_required = |M_d + J a / R| / (R L) [N/m]: the bearing and seal drag and the
+    roller's angular acceleration per unit web width (:func:`idler_torque`: a line slowing
+    down, a < 0, has the roller's inertia helping the drag). delta_T_available =
     T_eff (exp(mu_onset B) - 1) with ``mu_onset`` the friction coefficient at the onset of
     slip (small sliding speed: the boundary friction of Eq. 29 vanishes there, so the caller
     states it, e.g. mu_cc times the contact share of the wrap load). Returns the keys
@@ -94,21 +96,41 @@ def idler_check(case, mu_onset: float) -> dict:
     (10.39, 2.2)
     """
     R, L = case.roller.radius, case.web.width
-    torque = idler_torque(case)
-    if torque <= 0.0:
+    if not states_load(case):
         return dict(delta_T_required=None, delta_T_available=None, slip_margin=None,
                     mu_onset=None)
-    required = torque / (R * L)
+    required = idler_torque(case) / (R * L)
     available = case.tension_eff * math.expm1(mu_onset * case.B)
+    # drag and inertia cancel exactly: the web need carry nothing, any traction holds
+    margin = available / required if required > 0.0 else math.inf
     return dict(delta_T_required=required, delta_T_available=available,
-                slip_margin=available / required, mu_onset=mu_onset)
+                slip_margin=margin, mu_onset=mu_onset)
+
+
+def states_load(case) -> bool:
+    """Whether ``case`` states an idler load: a drag torque, or an inertia with a line
+    acceleration (whatever their sum)."""
+    r = case.roller
+    return r.drag_torque > 0.0 or r.inertia * case.web.acceleration != 0.0
 
 
 def idler_torque(case) -> float:
-    """The torque an idler must be driven with, M_d + J |a| / R [N m]: the bearing and seal
-    drag and the roller's angular acceleration (:func:`idler_check`)."""
+    """The torque the web must put on an idler, |M_d + J a / R| [N m] (:func:`idler_check`).
+
+    The roller's equation: J alpha = R F - M_d, with F = delta_T L the web's pull on its
+    surface (the tension difference across the wrap) and alpha = a / R while it turns with
+    the line (no slip). So R F = M_d + J a / R: a line speeding up (a > 0) adds the inertia
+    to the drag; one slowing down (a < 0) has the roller's inertia helping the drag, and
+    where J |a| / R exceeds M_d the web must brake the roller instead, F < 0. Friction
+    carries either sign, so the traction needed is the magnitude.
+
+    >>> from webfem import Case
+    >>> c = Case().updated({"roller.drag_torque": 0.05, "roller.inertia": 0.006})
+    >>> [round(idler_torque(c.updated({"web.acceleration": a})), 4) for a in (5.0, -5.0)]
+    [0.5955, 0.4955]
+    """
     r = case.roller
-    return r.drag_torque + r.inertia * abs(case.web.acceleration) / r.radius
+    return abs(r.drag_torque + r.inertia * case.web.acceleration / r.radius)
 
 
 def traction_summary(case, mu: float, contact_share: float) -> dict:
@@ -176,21 +198,22 @@ def traction_summaries(cases, mu, contact_share) -> list[dict]:
     [0.0, 0.0]
     """
     rows = np.array([(c.tension_eff, c.B, c.friction.mu_cc, c.U_slide, idler_torque(c),
-                      c.roller.radius, c.web.width) for c in cases], float).reshape(-1, 7)
-    T, B, mu_cc, U_s, torque, R, L = rows.T
+                      c.roller.radius, c.web.width, states_load(c)) for c in cases],
+                    float).reshape(-1, 8)
+    T, B, mu_cc, U_s, torque, R, L, loaded = rows.T
     mu = np.asarray(mu, float)
     mu_onset = mu_cc * np.asarray(contact_share, float)
     delta_T = delta_T_from_mu(mu, T, B)
     available = T * np.expm1(mu_onset * B)
     with np.errstate(divide="ignore", invalid="ignore"):
         required = torque / (R * L)
-        margin = available / required
+        margin = np.where(required > 0.0, available / required, np.inf)
     cols = [v.tolist() for v in (mu, delta_T, mu_onset, available, required, margin, U_s,
-                                 torque)]
+                                 loaded)]
     out = []
-    for m, dT, onset, avail, req, marg, us, tq in zip(*cols):
+    for m, dT, onset, avail, req, marg, us, load in zip(*cols):
         idler = (dict(delta_T_required=req, delta_T_available=avail, slip_margin=marg,
-                      mu_onset=onset) if tq > 0.0 else dict.fromkeys(_IDLER_KEYS))
+                      mu_onset=onset) if load else dict.fromkeys(_IDLER_KEYS))
         if us != 0.0:
             out.append(dict(mu=m, delta_T=dT, mu_film=None, delta_T_film=None, **idler))
         else:

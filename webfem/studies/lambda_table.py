@@ -19,6 +19,7 @@ from typing import Callable, ClassVar
 from ..api import solve
 from ..case import Case
 from ..errors import ValidityWarning
+from ..line_speed import at_speed
 
 __all__ = ["LAMBDAS", "QUICK_LAMBDAS", "PERMEABILITIES", "LambdaTable", "run"]
 
@@ -59,7 +60,7 @@ def run(case: Case, speed: float = 40.0, lambdas=None, quick: bool = False,
     lambdas = tuple(lambdas if lambdas is not None else (QUICK_LAMBDAS if quick else LAMBDAS))
     rows = []
     for k in PERMEABILITIES:
-        base = case.updated({"roller.speed": speed, "web.permeability": k})
+        base = at_speed(case, speed).updated({"web.permeability": k})   # the line moves
         for lam in lambdas:
             width = lam * 2.0 * base.x_scale
             point = base.updated({"web.width": width})

@@ -24,6 +24,7 @@ import numpy as np
 from ..api import solve
 from ..case import Case
 from ..errors import ConvergenceError, ValidityWarning
+from ..line_speed import at_speed
 
 __all__ = ["SCHEMES", "STATUS", "StabilityStudy", "classify", "attempt", "run"]
 
@@ -114,7 +115,7 @@ def run(case: Case, quick: bool = False,
         for level in levels:
             for wrap in wraps:
                 for u in speeds:
-                    c = case.updated({"roller.speed": u, "wrap.angle_deg": wrap})
+                    c = at_speed(case, u).updated({"wrap.angle_deg": wrap})
                     o = dict(opts, level=level, picard_max_iter=picard_iter, adapt=0)
                     rows.append({"study": "coupling", "method": name, "model": "fe1d",
                                  "speed": u, "wrap_deg": wrap, "width": case.web.width,
@@ -123,7 +124,7 @@ def run(case: Case, quick: bool = False,
             progress(f"{name}: done")
     for contact in (True, False):
         for u in speeds:
-            c = case.updated({"roller.speed": u})
+            c = at_speed(case, u)
             method = f"Newton, contact {'on' if contact else 'off'}"
             rows.append({"study": "contact", "method": method, "model": "fe1d", "speed": u,
                          "wrap_deg": case.wrap.angle_deg, "width": case.web.width, "level": 0,
@@ -131,7 +132,7 @@ def run(case: Case, quick: bool = False,
     widths = (0.02, 0.1) if quick else (0.01, 0.02, 0.035, 0.1, 0.3)
     for width in widths:
         for u in speeds[::2] if not quick else speeds:
-            c = case.updated({"roller.speed": u, "web.width": width})
+            c = at_speed(case, u).updated({"web.width": width})
             rows.append({"study": "2-D", "method": "fe2d Newton", "model": "fe2d", "speed": u,
                          "wrap_deg": case.wrap.angle_deg, "width": width, "level": 0,
                          **attempt(c, "fe2d", {})})
@@ -140,7 +141,7 @@ def run(case: Case, quick: bool = False,
     for width in widths:
         for wrap in (10.0, 20.0, 60.0, 120.0):
             for u in speeds:
-                c = case.updated({"roller.speed": u, "web.width": width, "wrap.angle_deg": wrap})
+                c = at_speed(case, u).updated({"web.width": width, "wrap.angle_deg": wrap})
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", ValidityWarning)   # the range is mapped
                     r = solve(c, model="closed-form")

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..api import solve_along
 from ..case import Case
+from ..line_speed import at_speed
 
 __all__ = ["COMBOS", "VariantsStudy", "run"]
 
@@ -99,6 +100,6 @@ def run(case: Case, model: str = "fe2d", num: int | None = None, quick: bool = F
 
 def _curve(base: Case, speeds: tuple, model: str) -> tuple:
     """mu along ``speeds`` with continuation (NaN where a solve did not converge)."""
-    cases = [base.updated({"roller.speed": u}) for u in speeds]
+    cases = [at_speed(base, u) for u in speeds]   # the line moves (webfem.line_speed)
     return tuple(float(r["mu"]) if r["converged"] else math.nan
                  for r in solve_along(cases, model))
