@@ -38,6 +38,11 @@ FAMILIES = {
 }
 
 
+def label(case: Case) -> str:
+    return (f"R {case.roller.radius:g} m, L {case.web.width:g} m, U_r {case.roller.speed:g} "
+            f"m/s, T {case.web.tension:g} N/m")
+
+
 def ratios(model: str, cases) -> tuple[list[tuple[Case, dict]], list[str]]:
     """Per case with an answer from both models: {quantity: (true, stated)}; and why the
     other cases have none."""
@@ -47,8 +52,7 @@ def ratios(model: str, cases) -> tuple[list[tuple[Case, dict]], list[str]]:
             r = webfem.solve(case, model=model)
             ref = webfem.solve(case, model="fe2d")
         except (ConvergenceError, NoAdmissibleSolution) as e:
-            skipped.append(f"R {case.roller.radius:g} m, L {case.web.width:g} m, U_r {case.roller.speed:g} "
-                           f"m/s: {str(e)[:100]}")
+            skipped.append(f"{label(case)}: {str(e)[:100]}")
             continue
         out.append((case, {q: (max(abs(r[q] - ref[q]) / error_scale(case, q, r[q])
                                    - ref[f"error_{q}"], 0.0), r[f"error_{q}"])
@@ -65,8 +69,7 @@ def main(argv: list[str]) -> int:
     for why in skipped:
         print("no answer:", why)
     for case, e in rows:
-        print(f"R {case.roller.radius:g} m, L {case.web.width:g} m, U_r {case.roller.speed:g} m/s, "
-              f"T {case.web.tension:g} N/m: " + ", ".join(
+        print(f"{label(case)}: " + ", ".join(
                   f"{q} {t_:.3g}/{s:.3g}" for q, (t_, s) in e.items()))
     print(f"{model} on {len(rows)} points of '{name}' (true/stated):")
     for q in READ_QUANTITIES:
