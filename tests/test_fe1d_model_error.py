@@ -5,6 +5,9 @@ The board (0.5 mm board on a 200 mm idler, Dn = 24.7) rests compressed at its ex
 where the film still carries 81 % of the load: fe1d used to lower only the local gap by
 1.87/lambda there and stated an h_min error of 0.008 (1.0 m wide) and 0.026 (0.3 m) where
 fe2d puts the minimum 0.077 and 0.27 away, and auto answered with fe1d at tol = 0.05.
+
+The base web at rest at 0.5 m/s: the film's suction around its exit dip (-160 Pa), which the
+2-D film's edges relieve, put fe2d's minimum 1.2e-3 above fe1d's where fe1d stated 4.6e-4.
 """
 
 import pytest
@@ -25,7 +28,15 @@ CASES = {"board": BOARD,
          "board 0.3 m": BOARD.updated({"web.width": 0.3}),
          "board 300 N/m": BOARD.updated({"web.tension": 300.0, "web.width": 0.3}),
          "thick base web": Case().updated({"web.thickness": 300e-6, "roller.speed": 10.0}),
-         "pet idler 0.2 m": as_case("pet_idler").updated({"web.width": 0.2})}
+         "pet idler 0.2 m": as_case("pet_idler").updated({"web.width": 0.2}),
+         # the base web resting on its asperities at low speeds (Dn 4.3-11: stiff), whose
+         # exit dip the film's suction deepens and the 2-D film's edges relieve
+         # (model_error.relieved_dip): h_min was 2.6-7x short at 0.3-0.5 m/s
+         "base 0.3 m/s": Case().updated({"roller.speed": 0.3}),
+         "base 0.5 m/s": Case().updated({"roller.speed": 0.5}),
+         "base 0.5 m/s 130 N/m": Case().updated({"roller.speed": 0.5, "web.tension": 130.0}),
+         "base 1 m/s": Case().updated({"roller.speed": 1.0}),
+         "base 2 m/s": Case().updated({"roller.speed": 2.0})}
 
 
 @pytest.fixture(scope="module")
