@@ -352,3 +352,19 @@ def test_idler_with_drag_and_inertia_cancelling_holds():
     assert out["slip_margin"] > 1e6
     many = traction_summaries([case], [0.1], [0.5])[0]
     assert many["delta_T_required"] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_exactly_cancelling_drag_and_inertia_reach_the_cli_without_a_traceback(capsys):
+    """0.05 N m + 0.006 kg m^2 x (-0.5 m/s^2) / 0.06 m is 0.0 to the bit: the stated margin
+    range divided by it (a ZeroDivisionError in `webfem solve` and `webfem idler`)."""
+    from webfem.cli import main
+    from webfem.physics.effects import margin_range
+
+    values = {"roller.radius": 0.06, "roller.drag_torque": 0.05, "roller.inertia": 0.006,
+              "web.acceleration": -0.5, "roller.speed": 10.0, "web.speed": 10.0}
+    case = Case().updated(values)
+    assert margin_range(case, 0.0, 0.1, 0.5) == (math.inf, math.inf)
+    sets = [a for k, v in values.items() for a in ("--set", f"{k}={v}")]
+    assert main(["solve", "base", "--model", "closed-form", *sets]) == 0
+    assert "holds" in capsys.readouterr().out
+    assert main(["idler", "base", "--model", "closed-form", "--num", "3", *sets]) == 0

@@ -617,3 +617,18 @@ def test_calibration_states_a_positive_constant_it_cannot_bound_honestly(tmp_pat
     assert f"{C:.6g}" not in line and "not determined" in line and "+-" not in line
     mu_line = next(ln for ln in text.splitlines() if ln.strip().startswith("mu_cc"))
     assert f"{out['estimates']['mu_cc']:.6g}" not in mu_line and "+-" in mu_line
+
+
+def test_calibration_at_the_fits_bound_states_no_interval_without_overflow(tmp_path, capsys):
+    """mu ~ 0 at every speed presses mu_cc to the fit's lower bound: its log-space interval
+    (ln p +- t se / p) overflowed math.exp into a traceback; it is 0 to infinity, said."""
+    p = _write(tmp_path / "m.csv", "roller_speed,tension,mu\n0.3,80,0\n1,80,0\n2,80,0.001\n"
+               "4,80,0\n7,80,0\n10,80,0.002\n")
+    assert main(["calibrate", str(p), "--case", "cases/base.toml", "--model",
+                 "closed-form"]) == 0
+    out = capsys.readouterr().out
+    assert "mu_cc" in out and "0 to inf" in out and "not determined" in out
+    assert main(["calibrate", str(p), "--case", "cases/base.toml", "--model", "closed-form",
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["interval95"]["mu_cc"][0] == 0.0 and data["interval95"]["mu_cc"][1] is None

@@ -395,15 +395,21 @@ def calibrate(rows: list[dict], case: Case, model: str = "auto",
     interval = dict.fromkeys(names)
     for j in keep:
         name, v = names[j], float(p[j])
-        spread = math.exp(half[name] / v)   # ln p +- t se / p
-        interval[name] = (v / spread, v * spread)
+        # ln p +- t se / p; an estimate pressed to the fit's bound (v -> 1e-9 of its scale)
+        # has no log-space interval to speak of: 0 to infinity, not an overflow
+        z = half[name] / v if v > 0.0 else math.inf
+        spread = math.exp(z) if z < 700.0 else math.inf
+        interval[name] = (v / spread, v * spread) if math.isfinite(spread) else (0.0, math.inf)
         if half[name] >= v:
             low, high = interval[name]
             unit = _UNITS[name]
+            span = (f"in log space it spans {low:.2g} to {high:.2g}{unit}, a factor "
+                    f"{spread:.2g} either way" if math.isfinite(spread) else
+                    "in log space it spans 0 to infinity (the estimate sits at the fit's "
+                    "lower bound)")
             notes.append(f"{name} is not determined by these data: its linear 95 % interval "
-                         f"({v:.2g} +- {half[name]:.2g}{unit}) reaches below 0, and in log "
-                         f"space it spans {low:.2g} to {high:.2g}{unit}, a factor "
-                         f"{spread:.2g} either way; add {_HINTS[name]}")
+                         f"({v:.2g} +- {half[name]:.2g}{unit}) reaches below 0, and {span}; "
+                         f"add {_HINTS[name]}")
     if s2 == 0.0 and keep:
         notes.append("the fit is exact (zero residuals): the intervals are 0 because the "
                      "data show no scatter, not because the constants are known exactly")

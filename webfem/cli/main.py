@@ -86,6 +86,9 @@ class Terminated(KeyboardInterrupt):
 
 
 def _terminate(signum, frame):
+    # a scheduler or a kill loop sends it again: the clean-up (files, the sweep's lock) runs
+    # once, uncut; the handler before this command's comes back when it ends
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
     raise Terminated()
 
 
@@ -101,7 +104,8 @@ def _sigterm_as_interrupt():
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, old)
+        if old is not None:     # None: a handler not installed from Python, left as it is
+            signal.signal(signal.SIGTERM, old)
 
 
 def main(argv=None) -> int:

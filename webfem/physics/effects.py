@@ -231,7 +231,9 @@ def margin_range(case, required: float, mu: float, error_mu: float | None):
     """The slip margin's range ``(low, high)`` that mu's stated error allows: the available
     tension increase T_eff (exp(mu B) - 1) at mu -/+ the error (``error_mu`` relative to
     the larger of |mu| and :data:`MU_SCALE` mu_cc; mu at least 0),
-    over the ``required`` one [N/m]. Without a stated error, the margin itself both ways.
+    over the ``required`` one [N/m]. Without a stated error, the margin itself both ways;
+    infinite where nothing is required (the drag and the inertia cancel: 0.05 N m against
+    0.006 kg m^2 x -0.5 m/s^2 / 0.06 m).
 
     >>> import math
     >>> from webfem import Case
@@ -240,6 +242,8 @@ def margin_range(case, required: float, mu: float, error_mu: float | None):
     >>> [round(v / (c.tension_eff * math.expm1(m * c.B)), 12) for v, m in ((lo, 0.05), (hi, 0.15))]
     [1.0, 1.0]
     """
+    if not required > 0.0:      # drag and inertia cancel: nothing to carry, nothing to slip
+        return math.inf, math.inf
     T, B = case.tension_eff, case.B
     margin = T * math.expm1(max(mu, 0.0) * B) / required
     if error_mu is None or not math.isfinite(error_mu) or not math.isfinite(margin):
