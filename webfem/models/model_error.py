@@ -333,7 +333,8 @@ def edge_drain_factor(z):
     zs = np.where(small, 0.05, z)
     big = zs * np.tanh(zs) / (1.0 - np.tanh(zs) / zs)     # no overflow at large z
     # z - tanh(z) cancels for small z: the series of the ratio, 3 (1 + z^2/15)
-    series = 3.0 * (1.0 + z * z / 15.0)
+    zt = np.where(small, z, 0.0)
+    series = 3.0 * (1.0 + zt * zt / 15.0)
     return np.where(small, series, big)
 
 
