@@ -89,7 +89,11 @@ def test_printed_summary_says_what_mu_is(capsys):
     assert line.startswith("  mu = 0.0530, tension increase before slip delta_T = 4.308 N/m")
     assert "the traction available at the onset of slip" in line
     assert "mu_film = -0.0002, delta_T_film = -0.017 N/m" in out
-    assert "idler holds with margin 1.1" in out
+    # fe1d's stated mu error, 0.22 since the permeable film's drain down the wrap counts
+    # (a true 0.067 against fe2d, where it stated 0.058), spans the verdict: fe2d decides
+    # (it holds, margin 1.2)
+    assert "idler unsure: margin 1.1, but mu's stated error allows 0.88 to 1.4" in out
+    assert "a finer model decides" in out
 
 
 def test_effects_table_of_an_idler_reads_the_onset_traction():

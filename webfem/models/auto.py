@@ -33,6 +33,7 @@ import dataclasses
 
 from ..case import Case
 from ..errors import ConvergenceError, NoAdmissibleSolution
+from ..fem.scaling import FoilParameters
 from ..physics.validity import BETA_MAX
 from ..result import Result
 from . import closed, fe1d, fe2d, fitted
@@ -106,7 +107,10 @@ def solve_case(case: Case, options: AutoOptions, *, initial: Result | None = Non
     r = fe1d.solve_case(case, fe_options(options, FE1DOptions), raise_on_failure=False)
     if r.summary.converged:
         ok, text = _verdict("fe1d", stated_errors(r), quantities, tol)
-        why.append(text + " (edge leakage ~1.5/lambda left out)")
+        why.append(text + (" (edge leakage left out: ~1.5/lambda, more where permeation "
+                           "drains the film down the wrap)"
+                           if FoilParameters.from_case(case).K > 0.0
+                           else " (edge leakage ~1.5/lambda left out)"))
         if ok:
             return _answer(r, quantities, tol, why)
     else:
