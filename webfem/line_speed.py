@@ -26,8 +26,6 @@ Examples
 
 from __future__ import annotations
 
-import math
-
 from .case import Case
 from .errors import InputError
 from .physics.validity import thin_film_message

@@ -204,7 +204,6 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     levels, varying = {}, set()
     for i, label in enumerate(series):
         sel = [r for r in rows if r["series"] == label]
-        good = [r for r in sel if r.get("converged") is True]
         ok = [r.get("converged") is True for r in sel]
         U = xs(sel)
         colour = colours[i % len(colours)]
