@@ -56,3 +56,16 @@ def idler() -> Case:
 def grooved() -> Case:
     """:data:`GROOVED`."""
     return GROOVED
+
+
+def inspect_before_save(monkeypatch, module, inspect) -> None:
+    """Have ``module.save_figure`` call ``inspect(fig, renderer)`` on the drawn figure
+    before it saves (and closes) it: a chart test measures its layout there."""
+    real = module.save_figure
+
+    def keep(fig, path):
+        fig.canvas.draw()
+        inspect(fig, fig.canvas.get_renderer())
+        return real(fig, path)
+
+    monkeypatch.setattr(module, "save_figure", keep)

@@ -20,6 +20,8 @@ from webfem.io.groove_charts import loss_speed_chart
 from webfem.sweeps import SweepInterrupted
 from webfem.traction import TractionLoss
 
+from conftest import inspect_before_save
+
 GRID = {"speeds": (20.0, 40.0), "pitches": (1.27e-3, 5e-3), "land_fractions": (0.5, 0.9)}
 
 
@@ -281,21 +283,16 @@ def test_groove_chart_of_one_speed_keeps_its_labels_on_the_canvas(tmp_path, monk
     designs.append(gs.GrooveDesign(25.0, 3e-3, 1.5e-3, 3e-4, 0.5, None, None, None, False,
                                    False, "not converged"))
     seen = {}
-    real = groove_charts.save_figure
 
-    def keep(fig, path):
-        # measured before the save closes the figure
-        fig.canvas.draw()
-        renderer = fig.canvas.get_renderer()
+    def measure(fig, renderer):
         ax = fig.axes[0]
         lo, hi = ax.get_ylim()
         shown = [t for t, y in zip(ax.get_yticklabels(), ax.get_yticks()) if lo <= y <= hi]
         parts = [fig.legends[0], ax.yaxis.label, ax.xaxis.label, *shown]
         seen.update(ylabel=ax.get_ylabel(), width=ax.get_position().width, canvas=fig.bbox,
                     boxes=[(p, p.get_window_extent(renderer)) for p in parts])
-        return real(fig, path)
 
-    monkeypatch.setattr(groove_charts, "save_figure", keep)
+    inspect_before_save(monkeypatch, groove_charts, measure)
     groove_charts.groove_chart(designs, 0.2, tmp_path / "g.png",
                                gs.best_designs(designs))
     assert "mu" in seen["ylabel"] and "friction coefficient" in seen["ylabel"]

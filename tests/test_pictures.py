@@ -14,6 +14,8 @@ from webfem.io.pictures import film_figure, film_pictures
 from webfem.io.vtu import ARRAY_NAMES, FILM_FIELDS, WEB_FIELDS, read_field_data, write_result
 from webfem.io.vtu import write_pvd
 
+from conftest import inspect_before_save
+
 # a narrow web on a small wrap: a quick fe2d solve
 FAST = webfem.Case().updated({"web.width": 0.025, "wrap.angle_deg": 30.0,
                               "roller.speed": 30.0})
@@ -196,18 +198,14 @@ def _idler_figure(monkeypatch, tmp_path, margins, speeds=None):
     curve = MarginCurve("fe1d", speeds, (1.25,) * n, tuple(1.25 * m for m in margins),
                         tuple(margins), (0.0,) * n, (True,) * n)
     seen = {}
-    real = module.save_figure
 
-    def keep(fig, path):
-        fig.canvas.draw()
-        renderer = fig.canvas.get_renderer()
+    def measure(fig, renderer):
         b = fig.axes[1]
         seen.update(ylim=b.get_ylim(), legend=[t.get_text() for t in b.get_legend().texts]
                     if b.get_legend() else [],
                     words={t.get_text(): t.get_window_extent(renderer) for t in b.texts})
-        return real(fig, path)
 
-    monkeypatch.setattr(module, "save_figure", keep)
+    inspect_before_save(monkeypatch, module, measure)
     module.idler_chart(curve, tmp_path / "i.png")
     return seen
 

@@ -64,6 +64,10 @@ def level_words(h_c: float, sigma: float) -> tuple[str, str]:
     return "boundary below", "fluid above"
 
 
+#: The contact load share a fluid regime's summary names (below it the words agree).
+CONTACT_NOTED = 0.005
+
+
 def regime_text(s, case=None) -> str:
     """The regime line of :func:`describe`: the levels, the paper's regime by the gap with
     its wrap shares, and, where they tell another story, what the contact model's load share
@@ -85,9 +89,6 @@ def regime_text(s, case=None) -> str:
                  f"the wrap load: its asperity heights have no cut-off at 3 sigma{follows}")
     return text
 
-
-#: The contact load share a fluid regime's summary names (below it the words agree).
-CONTACT_NOTED = 0.005
 
 
 def verdict(s, case=None) -> str:

@@ -252,13 +252,7 @@ def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[
     if why:
         raise OutsideDomain(f"no fitted answer: {why}")
     grid = np.geomspace(lo, hi, n)
-    cases, where = [], []
-    for j, u in enumerate(grid):
-        try:
-            cases.append(at_speed(case, float(u)))
-            where.append(j)
-        except InputError:
-            pass
+    cases, where = _cases_at(case, grid)
     inside = np.zeros(n, bool)
     if cases:
         rows = fg.outside_rows(fg.groups_of_columns(fg.case_columns(cases)))
@@ -278,6 +272,19 @@ def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[
     return float(grid[first]), float(grid[first + length - 1])
 
 
+def _cases_at(case: Case, speeds) -> tuple[list[Case], list[int]]:
+    """The line of ``case`` at each of ``speeds`` (:func:`webfem.line_speed.at_speed`) that
+    is a case at all, and the indices of those speeds."""
+    cases, where = [], []
+    for j, u in enumerate(speeds):
+        try:
+            cases.append(at_speed(case, float(u)))
+            where.append(j)
+        except InputError:      # the web cannot be held on the roller at that speed
+            pass
+    return cases, where
+
+
 def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = None
              ) -> tuple[np.ndarray, np.ndarray]:
     """mu against roller speed: ``(speeds, mu)``, walked with continuation (the web at the
@@ -293,16 +300,9 @@ def mu_curve(case: Case, model: str, speeds, options: Options | dict | None = No
     from .api import solve_many
 
     speeds = np.asarray(speeds, float)
-    top = top_speed(case, float(speeds.max()))[0] if speeds.size else np.inf
-    cases, where = [], []
-    for j, u in enumerate(speeds):
-        if u > top:     # the web flies off the roller there: no answer
-            continue
-        try:
-            cases.append(at_speed(case, float(u)))
-            where.append(j)
-        except InputError:
-            pass
+    # a web flown off the roller is no case (left out); a film too thick for the thin-film
+    # model is refused by the solve (kept unconverged): both NaN
+    cases, where = _cases_at(case, speeds)
     mu = np.full(len(speeds), np.nan)
     if model == "fitted":       # outside its domain (which moves with the speed): NaN
         from .models import fit_groups as fg
