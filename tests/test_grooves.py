@@ -15,7 +15,7 @@ import pytest
 from webfem import Case
 from webfem.cli import main
 from webfem.errors import InputError
-from webfem.fem.grooves import GroovePattern, groove_nodes
+from webfem.fem.grooves import GroovePattern, groove_nodes, web_sag
 from webfem.fem.mesh import graded_nodes
 from webfem.fem.scaling import FoilParameters
 from webfem.models import auto, closed, fe1d, fe2d
@@ -310,6 +310,26 @@ def test_a_thin_web_sagging_into_wide_grooves_is_warned():
     assert "sags into its 2.5 mm grooves" in said and "resting on its asperities" in said
     r = auto.solve(BASE_GROOVED)
     assert not any("sags" in w for w in r["warnings"])
+
+
+def test_the_sag_rule_is_continuous_where_the_web_lands():
+    """The scale a sag is judged against is max(h_min, sigma): a web just above its
+    asperities and one just resting on them get the same verdict, and a gap below sigma is
+    not a stricter scale than sigma itself (newsprint, sigma 4 um: 1.8 mm grooves sag
+    0.3 um, 2.5 mm grooves 1.1 um)."""
+    c = BASE_GROOVED.updated({"roller.groove_width": 1.8e-3, "roller.groove_pitch": 5e-3})
+    sag = web_sag(c.p_bar, 1.8e-3, c.web.modulus_md, c.web.thickness)
+    assert 0.1 * 0.01e-6 < sag < 0.1 * c.sigma
+    for h in (-1e-8, 1e-8):                              # resting or just above: alike
+        assert sag_warning(c, h) == ""
+    assert sag_warning(c, 0.9 * sag / 0.1) == ""         # h_min below sigma: sigma decides
+    assert sag_warning(c, 2 * c.sigma) == ""
+    wide = c.updated({"roller.groove_width": 2.5e-3})
+    assert "the smallest land gap h_min = 5 um" in sag_warning(wide, 5e-6)  # above sigma
+    assert sag_warning(wide, 20e-6) == ""
+    for h, said in ((-1e-8, "resting on its asperities"), (1e-8, "above the smallest land gap")):
+        assert "the roughness sigma" in sag_warning(wide, h) and said in sag_warning(wide, h)
+
 
 
 def test_the_full_width_starts_from_the_periodic_cells_web(monkeypatch):

@@ -171,25 +171,26 @@ def _said(r: Result, text: str, t0: float) -> Result:
 
 def sag_warning(case: Case, h_min: float) -> str:
     """The warning of a web that sags into its grooves by more than :data:`~webfem.fem.
-    grooves.SAG_SHARE` of the smallest land gap ``h_min`` [m], or of the roughness where the
-    web rests ("" otherwise): webfem holds the
-    web flat across the width. The sag is :func:`~webfem.fem.grooves.web_sag` under the wrap
-    pressure T_eff/R, with E = web.modulus_md (the only modulus a case gives). h_min, not the
-    wrap's mean land gap: the smallest gap is where the asperities, and so the traction,
-    are most sensitive to a change of the gap. Where the web rests pressed into its
-    asperities (h_min <= 0), there is no land gap to compare with: the sag is compared with
-    the roughness sigma, the scale on which the contact, and so the traction, changes (a
-    resting web sagging 1.1 um into 2.5 mm grooves, h_min -0.03 um, sigma 4 um, was not
-    warned of). A positive h_min keeps its own, stricter, comparison."""
+    grooves.SAG_SHARE` of the larger of the smallest land gap ``h_min`` [m] and the
+    roughness sigma ("" otherwise): webfem holds the web flat across the width. The sag is
+    :func:`~webfem.fem.grooves.web_sag` under the wrap pressure T_eff/R, with E =
+    web.modulus_md (the only modulus a case gives). h_min, not the wrap's mean land gap: the
+    smallest gap is where the asperities, and so the traction, are most sensitive to a change
+    of the gap. The scale is never below sigma: a gap below the roughness matters through the
+    contact, which changes on the scale of sigma (webfem's error measures take gaps against
+    max(h, sigma) for the same reason), and the rule is continuous in h_min: a web 0.01 um
+    above its asperities and one resting at -0.01 um are judged alike (a resting web sagging
+    1.1 um into 2.5 mm grooves, h_min -0.03 um, sigma 4 um, is warned of)."""
     w, g = case.web, case.roller.groove_width
     sag = web_sag(case.p_bar, g, w.modulus_md, w.thickness)
-    scale = h_min if h_min > 0.0 else case.sigma
+    scale = max(h_min, case.sigma)
     if not (scale > 0.0) or sag <= SAG_SHARE * scale:
         return ""
     D = w.modulus_md * w.thickness ** 3 / (12.0 * (1.0 - POISSON ** 2))
-    against = (f"the smallest land gap h_min = {h_min * 1e6:.3g} um" if h_min > 0.0
-               else f"the roughness sigma = {case.sigma * 1e6:.3g} um, the web resting on its "
-                    f"asperities (h_min = {h_min * 1e6:.3g} um)")
+    where = (f"the web resting on its asperities (h_min = {h_min * 1e6:.3g} um)"
+             if h_min <= 0.0 else f"above the smallest land gap h_min = {h_min * 1e6:.3g} um")
+    against = (f"the smallest land gap h_min = {h_min * 1e6:.3g} um" if h_min > case.sigma
+               else f"the roughness sigma = {case.sigma * 1e6:.3g} um, {where}")
     return (f"the web sags into its {g * 1e3:.3g} mm grooves by about {sag * 1e6:.2g} um "
             f"({100 * sag / scale:.3g} % of {against}, "
             f"> {100 * SAG_SHARE:.0f} %): p g^4/(384 D) under the wrap pressure T/R = "
