@@ -63,6 +63,12 @@ BAD = [
                                   "<= 300 [m/s]"]),
     ("web.width", "1e400 m", ["web.width = '1e400 m' = inf m is out of range"]),
     ("web.tension", "0.5 pli pli", ["has dimension", "force/length"]),
+    # pint would read these as 15 m/s, 150 m/s and 500 m/min
+    ("roller.speed", "1,5 m/s", ["'1,5 m/s' has a comma or a space between digits",
+                                 "decimal point"]),
+    ("roller.speed", "1,50 m/s", ["decimal comma or a thousands separator"]),
+    ("roller.speed", "1 500 m/min", ["'1 500 m/min' has a comma or a space"]),
+    ("web.thickness", "0,07 mm", ["has a comma", "e.g."]),
 ]
 
 

@@ -75,6 +75,10 @@ _EXAMPLES_BY_KEY = {
 }
 _NUMBER_FIRST = re.compile(r"\s*[-+]?(\d|\.\d)")
 _MIL = re.compile(r"(?<![A-Za-z_])mils?(?![A-Za-z_])")
+#: Digits on both sides of a comma or a space: pint reads '1,5 m/s' as 15 m/s (the comma a
+#: thousands separator) and '1 500 m/min' as 1 x 500 m/min, so a decimal comma or a grouped
+#: number would be taken silently at another value.
+_SPLIT_NUMBER = re.compile(r"\d\s*,\s*\d|\d\s+\d")
 
 
 def examples(key: str, unit: str) -> tuple[str, str]:
@@ -134,6 +138,10 @@ def to_si(key: str, text: str, unit: str) -> float:
     if not _NUMBER_FIRST.match(text):
         raise InputError(f"{key} = {shown} is not a number: give a number and a unit; "
                          f"{expect}")
+    if _SPLIT_NUMBER.search(text):
+        raise InputError(f"{key} = {shown} has a comma or a space between digits, which "
+                         "could be a decimal comma or a thousands separator: write one "
+                         f"number with a decimal point and no separators; {expect}")
     ureg = _registry()
     try:
         q = ureg.Quantity(_MIL.sub("thou", text.strip()))
