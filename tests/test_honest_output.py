@@ -109,3 +109,14 @@ def test_film_picture_level_words_agree_when_h_c_is_above_3_sigma():
     assert level_words(2.22e-6, 0.2e-6) == ("boundary below, fluid above",
                                             "no mixed band: below h_c")
     assert level_words(4.94e-6, 4e-6) == ("boundary below", "fluid above")
+
+
+def test_a_mu_above_mu_cc_is_explained_where_printed():
+    """mu is the traction over T_eff/R: above mu_cc it is an answer (the air's drag adds to
+    the boundary friction), and the summary says so on its own line; below it, no line."""
+    above = closed(**{"web.tension": 120.0, "roller.speed": 9.0})
+    assert above.summary.mu > above.case.friction.mu_cc
+    text = summary_text(above, "closed-form")
+    line = next(ln for ln in text.splitlines() if "above friction.mu_cc" in ln)
+    assert "traction over the wrap load T_eff/R" in line and "drag" in line
+    assert "above friction.mu_cc" not in summary_text(closed(), "closed-form")

@@ -136,6 +136,20 @@ def traction_text(s, case) -> str:
     return ""
 
 
+def above_mu_cc_text(s, case) -> str:
+    """Why a mu above the dry-friction constant mu_cc is an answer ("" when it is not
+    above): mu is the traction per unit wrap load T_eff/R, and both parts can exceed what
+    the asperities give at the wrap load (README, "Closed form": a mu a little above mu_cc
+    is an answer)."""
+    mu_cc = case.friction.mu_cc
+    if not (s.mu is not None and s.mu > mu_cc):
+        return ""
+    return (f"  mu is above friction.mu_cc = {mu_cc:g}: mu is the traction over the wrap "
+            "load T_eff/R; the air sheared between the asperities adds its drag to the "
+            "boundary friction, and the asperities may carry more than T_eff/R where the "
+            "film's pressure is below ambient or the web's bending presses the wrap's ends")
+
+
 def judged_text(s) -> str:
     """``largest stated error 0.00031 <= 0.01 (every quantity judged)`` for auto's choice."""
     what = "every quantity judged" if s.quantity == "all" else f"{s.quantity} judged"
@@ -162,6 +176,7 @@ def describe(result) -> str:
         regime_text(s, c),
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
         + traction_text(s, c),
+        *([above_mu_cc_text(s, c)] if above_mu_cc_text(s, c) else []),
         *([f"  the film's own drag at these speeds (its pressure-driven shear): mu_film = "
            f"{s.mu_film:.4f}, delta_T_film = {s.delta_T_film:.3f} N/m"]
           if s.mu_film is not None else []),
