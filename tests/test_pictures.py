@@ -187,6 +187,38 @@ def test_sweep_chart_draws_a_level_that_moves_as_a_curve_and_its_labels_clear(
     assert "h_c (contact gap): moves with the parameter" in seen["legend"]
 
 
+
+def test_sweep_chart_scales_its_gap_axis_to_the_centre_where_the_edges_lift_off(
+        tmp_path, monkeypatch):
+    """The trial's board tension sweep: the stiff board leaves the roller at the wrap's
+    edges (inlet 2.9 mm, exit 2.2 mm at 100 N/m) while its centre gap is tens of microns; a
+    gap axis to 3000 um flattened the centre gap and h_c to its floor. The axis is scaled
+    to the centre gap and the levels, and the legend says how far the edge gaps run off;
+    a sweep without such edges keeps the axis from 0 to its largest gap."""
+    from webfem.io import charts
+    seen = {}
+    real_save = charts._save
+
+    def keep(fig, target):
+        seen["top"] = fig.axes[1].get_ylim()[1]
+        seen["legend"] = [t.get_text() for t in fig.legends[0].texts]
+        return real_save(fig, target)
+
+    monkeypatch.setattr(charts, "_save", keep)
+
+    def board(edge):
+        return [{"series": "base", "parameter": "web.tension", "value": T, "model": "fe2d",
+                 "mu": T / 3e4, "h_center": 4e-3 / T, "h_inlet": edge / T,
+                 "h_outlet": 0.8 * edge / T, "converged": True, "h_c": 1e-6, "sigma": 3e-6}
+                for T in (100.0, 300.0, 960.0)]
+
+    sweep_chart(board(0.29), tmp_path / "board.png")
+    assert 40.0 <= seen["top"] <= 80.0                   # 1.5 x the 40 um centre gap
+    assert "(edge gaps up to 2900 um: off the top of the gap axis)" in seen["legend"]
+    assert "mu (fe2d)" in seen["legend"]                 # one series: no "base:" prefix
+    sweep_chart(board(6e-3), tmp_path / "flat.png")
+    assert seen["top"] >= 60.0 and not any("off the top" in t for t in seen["legend"])
+
 def _idler_figure(monkeypatch, tmp_path, margins, speeds=None):
     """The idler chart of a curve with these margins: its right panel's y limits, its
     legend's texts, and the boxes of its words (measured before the save closes it)."""

@@ -210,8 +210,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         model = answered(sel, sel[0]["model"])
         ax.plot(U, [_f(r, "mu") if k else np.nan for r, k in zip(sel, ok)], "-", color=colour,
                 lw=1.8, marker=marker, ms=3.5,
-                label=f"{label}: mu ({model})" if len(series) > 1 or beside
-                else f"mu ({model})")
+                label=f"{label}: mu ({model})" if len(series) > 1 else f"mu ({model})")
         bad = [r for r, k in zip(sel, ok) if not k]
         if bad:
             ax.plot(xs(bad), [0.0] * len(bad), "x", color=colour,
@@ -224,7 +223,7 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
             rmodel = ref[0]["model"]
             rU = xs(ref)
             ax.plot(rU, [_f(r, "mu") for r in ref], "-", color=colour, lw=0.8, alpha=0.7,
-                    label=f"{label}: mu ({rmodel})")
+                    label=f"{label}: mu ({rmodel})" if len(series) > 1 else f"mu ({rmodel})")
             for key, name, dash in _GAP_STYLES:
                 ax2.plot(rU, gaps(ref, key), linestyle=dash, color=colour, lw=0.6, alpha=0.7)
         for key, factor, name in (("h_c", 1.0, "h_c"), ("sigma", 3.0, "3 sigma")):
@@ -251,6 +250,17 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     mu = [_f(r, "mu") for r in rows if r.get("converged") is True]
     ax.set_ylim(0.0, max([0.4] + [1.1 * m for m in mu if np.isfinite(m)]))
     ax2.set_ylim(0.0, None)
+    # where the wrap edges' gaps dwarf the centre's (a stiff board at low tension leaves the
+    # roller at the wrap's edges: 3 mm against a film of microns), the gap axis is scaled
+    # to the centre gap and the regime levels, what the chart is about, and the legend says
+    # how far the edge gaps run off it (as the film picture's do)
+    drawn = [r for r in rows if r.get("converged") is True] + list(beside or [])
+    edges = [h for r in drawn for h in (_f(r, "h_inlet"), _f(r, "h_outlet")) if np.isfinite(h)]
+    core = [h for r in drawn for h in (_f(r, "h_center"), _f(r, "h_c"), 3.0 * _f(r, "sigma"))
+            if np.isfinite(h)]
+    clipped = bool(edges) and bool(core) and max(core) > 0.0 and max(edges) > 3.0 * max(core)
+    if clipped:
+        ax2.set_ylim(0.0, float(display_values([1.5 * max(core)], "thin", units)[0]))
     ax.grid(True, alpha=0.3)
     h1, l1 = ax.get_legend_handles_labels()
     # the gap styles once, in black: the colours already name the series
@@ -262,6 +272,10 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     styles += [(Line2D([], [], color="0.45", lw=0.9, ls="-."),
                 f"{meaning[name]}: moves with the parameter")
                for name in ("h_c", "3 sigma") if name in varying]
+    if clipped:
+        styles.append((Line2D([], [], color="none"),
+                       f"(edge gaps up to {display_values([max(edges)], 'thin', units)[0]:.4g}"
+                       f" {thin}: off the top of the gap axis)"))
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
                loc="outside right upper")
     _level_labels(ax2, levels, thin)
