@@ -179,3 +179,19 @@ def test_the_worst_error_names_an_unmeasured_change_instead_of_failing():
 
     assert _worst({"h_center": None, "mu": 3e-3}) == "h_center unknown"
     assert _worst({"h_center": 1e-4, "mu": 3e-3}) == "mu 0.003"
+
+
+def test_no_estimate_at_all_is_said_once_and_plainly():
+    """The trial's board on a 30 mm roller (fe1d): neither the coarser nor the finer mesh
+    gave an answer. The warnings said "mesh error estimate h_center unknown exceeds
+    error_tol", then "the stated errors are the change from the mesh with cells twice as
+    long", then "no mesh error estimate": one note now says there is none, and why."""
+    from webfem.models.mesh_error import MeshError, _unconfirmed
+
+    out = MeshError()
+    _unconfirmed(out, 2755, "did not converge", 1e-3)
+    assert out.confirmed is False and len(out.notes) == 1
+    note = out.notes[0]
+    assert note.startswith("no mesh error estimate") and "2,755 unknowns" in note
+    assert "did not converge" in note and "no error is stated" in note
+    assert "unknown exceeds" not in note and "twice as long alone" not in note

@@ -190,7 +190,10 @@ def describe(result) -> str:
         # not the tolerance's, so the reason goes beside it
         lines.append(f"  solver: {s.solver_message}")
     errors = error_text(s)
+    failed = any(w.startswith("no mesh error estimate") for w in s.warnings)
     lines.append(f"  stated error: {errors}; {s.error_basis}" if errors else
+                 "  stated error: none (no mesh error estimate could be made: the warning "
+                 "below says why; treat the answer as unverified)" if failed else
                  "  stated error: none (no estimate was made)")
     if s.mesh is not None:
         lines.append(f"  {s.method or ''} on {s.mesh}; residual {s.residual:.2e}; contact "

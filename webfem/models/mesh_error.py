@@ -302,8 +302,9 @@ def estimate_mesh_error(disc, case: Case, problem, u, prm: FoilParameters, optio
         out.errors = stated(out.errors, algebraic, coarse_bounds)
     if out.errors["h_center"] is None:
         out.basis = "none: no coarser mesh solved"
-        out.notes.append("no mesh error estimate: the mesh with cells twice as long did not "
-                         "converge")
+        if not any(n.startswith("no mesh error estimate") for n in out.notes):
+            out.notes.append("no mesh error estimate: the mesh with cells twice as long did "
+                             "not converge")
     elif user_mesh and _exceeds(out.errors, options.error_tol):
         out.notes.append(_user_note(out, options.error_tol))
     if out.algebraic is not None and out.errors["h_center"] is not None:
@@ -483,6 +484,14 @@ def _unconfirmed(out: MeshError, n: int, why: str, tol: float) -> None:
     if out.basis:
         out.basis += (f"; unconfirmed: the mesh with every cell halved ({n:,} unknowns) "
                       "gave no answer, so the change may understate the error")
+    if out.errors["h_center"] is None:
+        # no change was measured either: there is no estimate to call unconfirmed
+        out.notes.append(
+            f"no mesh error estimate: the mesh with cells twice as long gave no answer, and "
+            f"the mesh with every cell halved ({n:,} unknowns) gave no admissible answer "
+            f"from this one ({why}); no error is stated, and no second mesh confirms this "
+            "answer")
+        return
     out.notes.append(
         f"mesh error estimate {_worst(out.errors)} exceeds error_tol = {tol:g} and could not "
         f"be confirmed: the mesh with every cell halved ({n:,} unknowns) gave no admissible "
