@@ -46,7 +46,9 @@ MEANING = {"regime 0 = boundary (h < h_c)": 0.0, "regime 1 = mixed (h_c <= h <= 
            "regime 2 = fluid (h > 3 sigma)": 2.0,
            "X = arc from the wrap centre [m], air dragged to +X": 0.0,
            "Y = across the width from the centre line [m] (film)": 0.0,
-           "in_wrap = 1 on the roller (|X| <= R B / 2), 0 in the free spans": 0.0}
+           "in_wrap = 1 on the roller (|X| <= R B / 2), 0 in the free spans": 0.0,
+           "mu = local traction over the wrap load T_eff/R, its wrap average the summary's "
+           "mu; above mu_cc where the asperities carry more than T_eff/R": 0.0}
 
 
 def _field_data(values: dict) -> bytes:
