@@ -44,6 +44,7 @@ def test_continued_sweep_equals_cold_solves_within_stated_errors(speeds):
     for i, (case, a) in enumerate(zip(cases, along)):
         cold = webfem.solve(case, "fe2d")
         assert a["converged"] and cold["converged"]
+        assert "line_start" in cold.diagnostics.solver      # the 1-D start a cold solve made
         assert agree(case, a, cold) == [], case.roller.speed
         if i == 0:
             assert "continued" not in a.diagnostics.solver
@@ -51,7 +52,7 @@ def test_continued_sweep_equals_cold_solves_within_stated_errors(speeds):
         # a continued start: no 1-D solve, the previous mesh (moved) or the one its gap asks
         # for, a secant from the third point on while the mesh stayed
         note = a.diagnostics.solver["continued"]
-        assert note.startswith("continued") and "line_result" not in a.diagnostics.solver
+        assert note.startswith("continued") and "line_start" not in a.diagnostics.solver
         assert a["iterations"] < cold["iterations"], (case.roller.speed, a["iterations"],
                                                       cold["iterations"])
 

@@ -197,12 +197,16 @@ def test_grooved_film(grooved, newton):
 
 def test_film_fields_are_scikit_fems(film):
     """The 2-D problem's gap and width-averaged pressure at points (web probes kept per point
-    set, the average kept for the last state) equal scikit-fem's probes and interpolate to
-    the last bit, for a second state too, and the kept values cannot be changed from outside."""
+    set, the average kept for the last state) are the web's Hermite functions at the points
+    (:class:`~webfem.fem.hermite.LineProbes`, a fresh one: the same bits) of scikit-fem's
+    interpolate's average, and scikit-fem's probes within their own error (1e-8 relative:
+    its global monomials), for a second state too; the kept values cannot be changed from
+    outside."""
     import scipy.sparse.linalg as spla
     from skfem import BilinearForm
 
     from webfem.fem import forms
+    from webfem.fem.hermite import LineProbes
 
     p, u = film
     X = np.concatenate([p.X, 0.5 * (p.X[1:] + p.X[:-1])])
@@ -210,11 +214,15 @@ def test_film_fields_are_scikit_fems(film):
     mass = spla.splu(BilinearForm(lambda a, b, w: a * b).assemble(p.wbasis).tocsc())
     for v in (u, np.where(np.arange(u.size) < p.nP, 0.5 * u, u)):
         w = v[p.nP:]
-        assert np.array_equal(p.gap(v, PRM, X), probes @ w + forms.departure(X, PRM.beta))
+        gap = p.gap(v, PRM, X)
+        assert np.array_equal(gap, LineProbes(p.wbasis)(X, w) + forms.departure(X, PRM.beta))
+        np.testing.assert_allclose(gap, probes @ w + forms.departure(X, PRM.beta), rtol=0.0,
+                                   atol=1e-7 * np.max(np.abs(w)))
         Pq = np.asarray(p.fbasis.interpolate(v[:p.nP])).ravel()
         avg = mass.solve(p.T["M"].T @ (p.T["dx"] * Pq) / p.width)
         got = p.pressure(v, X)
-        assert np.array_equal(got, probes @ avg)
+        assert np.array_equal(got, LineProbes(p.wbasis)(X, avg))
+        np.testing.assert_allclose(got, probes @ avg, rtol=0.0, atol=1e-7 * np.max(np.abs(avg)))
         p.width_average(v)[:] = 0.0
         assert np.array_equal(p.pressure(v, X), got)
 

@@ -40,9 +40,13 @@ def _hermite(X, x):
 def test_film_basis_on_a_moved_mesh_is_scikit_fems(order, web_edges, strip):
     """A film mesh and basis on nodes moved from a mesh of the same size built before (what
     :data:`transfer.TOPOLOGIES` shares with it) equal scikit-fem's built from scratch on the
-    moved nodes to the last bit: boundaries, DOFs and their locations, values, gradients
-    and weights."""
+    moved nodes with the cells' affine map (:func:`transfer.parallelogram_mapping`) to the
+    last bit: boundaries, DOFs, values, gradients and weights; and scikit-fem's default
+    (isoparametric) basis to rounding (1e-13 relative; the DOF locations to 1e-15)."""
+    from types import SimpleNamespace
+
     from skfem import MeshQuad
+    from skfem.mapping import MappingAffine
 
     X = graded_nodes(3.0, 2.0, level=0)
     Z = width_nodes(5.0, half=True) + (2.0 if strip else 0.0)
@@ -61,7 +65,10 @@ def test_film_basis_on_a_moved_mesh_is_scikit_fems(order, web_edges, strip):
         bnd["edges"] = lambda p: np.isclose(p[1], z1)
     bnd["symmetry"] = (lambda p: np.isclose(p[1], z0)) if web_edges else \
         (lambda p: np.isclose(p[1], z0) | np.isclose(p[1], z1))
-    ref = Basis(ref_mesh.with_boundaries(bnd), elem, intorder=intorder)
+    ref_mesh = ref_mesh.with_boundaries(bnd)
+    affine = MappingAffine(SimpleNamespace(p=ref_mesh.p, t=ref_mesh.t[[0, 1, 3]]))
+    ref = Basis(ref_mesh, elem, intorder=intorder, mapping=affine)
+    iso = Basis(ref_mesh, elem, intorder=intorder)
     assert set(mesh.boundaries) == set(ref.mesh.boundaries)
     for name in ref.mesh.boundaries:
         assert np.array_equal(mesh.boundaries[name], ref.mesh.boundaries[name])
@@ -74,6 +81,14 @@ def test_film_basis_on_a_moved_mesh_is_scikit_fems(order, web_edges, strip):
     for a, b in zip(ours.basis, ref.basis):
         assert np.array_equal(np.asarray(a[0]), np.asarray(b[0]))
         assert np.array_equal(a[0].grad, b[0].grad)
+    # scikit-fem's isoparametric map gives the same basis to rounding
+    np.testing.assert_allclose(ours.doflocs, iso.doflocs, rtol=0.0,
+                               atol=1e-15 * np.max(np.abs(iso.doflocs)))
+    np.testing.assert_allclose(ours.dx, iso.dx, rtol=1e-13)
+    for a, b in zip(ours.basis, iso.basis):
+        np.testing.assert_allclose(np.asarray(a[0]), np.asarray(b[0]), rtol=0.0, atol=1e-13)
+        np.testing.assert_allclose(a[0].grad, b[0].grad, rtol=0.0,
+                                   atol=1e-13 * np.max(np.abs(b[0].grad)))
     # the mapping answers as scikit-fem's again once the basis is built
     assert "invDF" not in vars(ours.mapping)
 
@@ -161,6 +176,18 @@ def test_cellwise_matrices_of_cells_numbered_unlike(nb):
                       shape=(nel * nq, n))
     for a, b in [(A.data, B.data), (A.indices, B.indices), (A.indptr, B.indptr)]:
         assert np.array_equal(a, b)
+
+
+def test_parallelogram_mapping_only_for_parallelograms():
+    """The affine map is taken only where every cell is a parallelogram: a tensor mesh's
+    rectangles yes, a mesh with one corner moved no (scikit-fem's isoparametric map then)."""
+    from skfem import MeshQuad
+
+    mesh = film_mesh(graded_nodes(3.0, 2.0, level=0), width_nodes(5.0, half=True))
+    assert transfer.parallelogram_mapping(mesh) is not None
+    p = mesh.p.copy()
+    p[:, mesh.t[2, 0]] += 0.1
+    assert transfer.parallelogram_mapping(MeshQuad(p, mesh.t)) is None
 
 
 @pytest.mark.parametrize("elem", [ElementLineHermite, ElementLineP1, ElementLineP2])

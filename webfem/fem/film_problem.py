@@ -121,8 +121,9 @@ class FoilBearing2D:
         web = HermiteLine()
         self.wbasis = Basis(self.line, web, quadrature=quadrature(web.refdom, 6))
         self.mesh = film_mesh(self.X, self.Z, web_edges=self.web_edges, strip=self.strip)
-        # scikit-fem's basis, with the DOF numbering of a mesh of the same topology (a
-        # moved mesh: a continued point's) shared
+        # scikit-fem's basis on the rectangles' affine map (its isoparametric one to
+        # rounding), with the DOF numbering of a mesh of the same topology (a moved mesh: a
+        # continued point's) shared
         self.fbasis = film_basis(self.mesh, ElementQuad2() if order == 2 else ElementQuad1(),
                                  intorder=4 if order == 2 else 3)
         self._T = None

@@ -35,7 +35,7 @@ from .outcome import Facts, build_result
 from .readout import errors_between, read_out
 from .refine import FLAT_GAP, adapted_nodes, minimum
 
-__all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "adapted_nodes",
+__all__ = ["FEProblem", "Discretisation", "Start", "solve_fe", "solve_state", "adapted_nodes",
            "admissibility", "REMEDY_MAX_DOFS", "REST_CHECKED"]
 
 #: The methods of a problem that each ``method`` option calls.
@@ -232,20 +232,8 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
     :class:`~webfem.errors.ConvergenceError` (carrying the last iterate) when no converged,
     admissible solution is found, unless ``raise_on_failure`` is False.
     """
-    thin_film_check(case)
-    wrap_length_check(case)
-    _resting_through(case, options)
     t0 = time.perf_counter()
-    restart = initial.restart if isinstance(initial, Result) else initial
-    prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
-    try:
-        start, problem, u, info, options = _answer(disc, case, prm, options, restart)
-    except (np.linalg.LinAlgError, ArithmeticError) as err:
-        raise ConvergenceError(
-            f"{disc.name}: the discrete problem could not be built or solved "
-            f"({type(err).__name__}: {err}); cells this short or this many lose the "
-            "precision the solver needs: a lower level or webfem's default mesh may help",
-            None) from None
+    start, problem, u, info, options, prm = _solved(disc, case, options, initial)
     mesh_error = MeshError()
     # a coarse solve the start made (fe2d's cold start): the estimate's, not the result's
     solved = start.kept.pop("coarse", None)
@@ -282,6 +270,34 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
                                f"{info.reason} after {info.iterations} iterations, "
                                f"residual {info.residual:.3e}", result, info.history)
     return result
+
+
+def solve_state(disc: Discretisation, case: Case, options, initial=None):
+    """:func:`solve_fe`'s solve without its result: ``(start, problem, u, info)`` of the
+    answer, or of the last attempt with ``info.converged`` False (the same remedies, the
+    same checks and errors). No mesh error estimate is made. Why: fe2d's 1-D start reads
+    only the state, its problem and its iterations, and the 1-D result (its read-out,
+    friction and fields) was 3 ms of a cold fe2d base solve's 135."""
+    start, problem, u, info, _, _ = _solved(disc, case, options, initial)
+    return start, problem, u, info
+
+
+def _solved(disc: Discretisation, case: Case, options, initial):
+    """The checks of ``case`` up front, then :func:`_answer` from ``initial`` (a result or
+    its state): ``(start, problem, u, info, options, prm)``."""
+    thin_film_check(case)
+    wrap_length_check(case)
+    _resting_through(case, options)
+    restart = initial.restart if isinstance(initial, Result) else initial
+    prm = FoilParameters.from_case(case, options.compressible, options.contact, options.floor)
+    try:
+        return (*_answer(disc, case, prm, options, restart), prm)
+    except (np.linalg.LinAlgError, ArithmeticError) as err:
+        raise ConvergenceError(
+            f"{disc.name}: the discrete problem could not be built or solved "
+            f"({type(err).__name__}: {err}); cells this short or this many lose the "
+            "precision the solver needs: a lower level or webfem's default mesh may help",
+            None) from None
 
 
 def _resting_through(case: Case, options) -> None:

@@ -41,13 +41,14 @@ from ..fem.mesh import graded_nodes, refine_nodes
 from ..fem.meshfile import read_x_nodes
 from ..fem.scaling import FoilParameters
 from ..result import Result, State
-from .driver import Discretisation, Start, solve_fe
+from .driver import Discretisation, Start, solve_fe, solve_state
 from .line import FoilBearing1D
 from .model_error import fe1d_basis, fe1d_errors
 from .options import FE1DOptions
 from .outcome import Facts
 
 __all__ = ["FoilParameters", "FoilBearing1D", "ProblemCache", "LINE", "solve", "solve_case",
+           "LineStart", "solve_start",
            "NAME", "spans", "ends_warnings", "short_span_warning", "held_ends_warning",
            "HELD_ENDS_SHARE"]
 
@@ -283,6 +284,34 @@ def solve_case(case: Case, options: FE1DOptions, *, initial: Result | None = Non
             err.result = with_model_error(err.result)
         raise
     return with_model_error(r)
+
+
+@dataclasses.dataclass(frozen=True)
+class LineStart:
+    """A 1-D solution as the start of another solve (:func:`solve_start`): its discrete
+    ``problem`` and ``state``, the Newton ``iterations`` it took, whether it ``converged``
+    (admissible), and ``restart``: the state a later 1-D solve continues from (a result's
+    :attr:`~webfem.result.Result.restart`)."""
+
+    problem: FoilBearing1D
+    state: np.ndarray
+    iterations: int
+    converged: bool
+    restart: State
+
+
+def solve_start(case: Case, options: FE1DOptions, *, initial: Result | State | None = None
+                ) -> LineStart:
+    """:func:`solve_case` without its result (its read-out, friction, fields and model
+    error; ``raise_on_failure`` False: a failed solve is returned, not raised): the solve
+    that starts fe2d's, which reads only the state (:func:`webfem.models.driver.
+    solve_state`). ``initial``: a 1-D result or state to continue from."""
+    from ..physics.validity import grooves_refused
+
+    grooves_refused(case, "fe1d")
+    start, problem, u, info = solve_state(LINE, case, options, initial)
+    return LineStart(problem, u, int(info.iterations), bool(info.converged),
+                     LINE.state(case, problem, u, start, options))
 
 
 def with_model_error(r: Result) -> Result:

@@ -163,6 +163,15 @@ FLAT_KEPT = 50.0
 #: finer-mesh remedy's).
 LINES_KEPT = 3
 
+#: The residual tolerance of the 1-D solve that starts a cold smooth-roller 2-D solve whose
+#: mesh is decided up front (:meth:`_Film._coarse_first`). Why not the 2-D solve's 1e-9:
+#: that solution is only the coarse mesh's start (its 2-D residual is 2.2e3 from it on the
+#: base case) and the misfit rule's reference (:data:`LINE_MISFIT`), so its last Newton
+#: step (7.7e-8 -> 3e-11, a state change of about 1e-9) bought nothing: the cold base
+#: case 16 -> 15 iterations, its mesh the same. Not looser: at 1e-2 (a residual of 6.6e-3)
+#: the misfit rule bisected other cells (10,777 -> 11,161 unknowns).
+LINE_START_TOL = 1e-6
+
 
 def _coarse_rounds(case: Case, prm, options: FE2DOptions, coarse: FoilBearing2D, u0, what,
                    planning: bool = False, flat_gap: float = FLAT_GAP,
@@ -350,17 +359,18 @@ class _Film(Discretisation):
         #: its web starts the strip's or the full width's Newton (:meth:`start`)
         self.cell: Result | None = None
 
-    def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> Result:
-        """The 1-D solution that starts the 2-D solve. A cold one is kept for the same case
+    def _line(self, smooth: Case, options: FE1DOptions, line: State | None) -> fe1d.LineStart:
+        """The 1-D solution that starts the 2-D solve (:func:`webfem.models.fe1d.
+        solve_start`: its state, without a result). A cold one is kept for the same case
         and options: the driver's safe start and its check of a resting answer start from
         the same 1-D solve as the direct start (a stiff board's took 5-10 s, each time), and
         it is deterministic, so the kept one is the one a new solve would give."""
         if line is not None:
-            return fe1d.solve_case(smooth, options, initial=line, raise_on_failure=False)
+            return fe1d.solve_start(smooth, options, initial=line)
         key = (smooth, options)
         one = self._lines.get(key)
         if one is None:
-            one = fe1d.solve_case(smooth, options, raise_on_failure=False)
+            one = fe1d.solve_start(smooth, options)
             if len(self._lines) >= LINES_KEPT:
                 self._lines.clear()
             self._lines[key] = one
@@ -396,24 +406,23 @@ class _Film(Discretisation):
         if informed and _decides_up_front(case, options):
             # the 1-D solution on its starting mesh: the 2-D coarse solve's gap decides where
             # the film is thin (:meth:`_coarse_first`), not the 1-D's, which is thicker
-            one = self._line(smooth, line_options.replace(adapt=0), line)
-            spent = SolveInfo(converged=True, iterations=one["iterations"])
-            first = self._coarse_first(case, prm, options, one.state("problem"),
-                                       one.state("state"))
+            one = self._line(smooth, line_options.replace(adapt=0, tol=LINE_START_TOL), line)
+            spent = SolveInfo(converged=True, iterations=one.iterations)
+            first = self._coarse_first(case, prm, options, one.problem, one.state)
             if first is not None:
                 fine, u0, coarse_info, kept = first
                 return Start(fine, u0, info=coarse_info.after(spent), line=one.restart,
-                             kept={"line_result": one, **kept})
+                             kept={"line_start": one, **kept})
         one = self._line(smooth, line_options, line)
-        p1, u1 = one.state("problem"), one.state("state")
-        spent = SolveInfo(converged=True, iterations=one["iterations"])
+        p1, u1 = one.problem, one.state
+        spent = SolveInfo(converged=True, iterations=one.iterations)
         problem = problem_for(case, options, p1.X)
         problem.line_start = (p1, u1)
         # on a smooth roller the 1-D solution is close enough for the coupled Newton; a
         # grooved film is not (the direct steps failed on the grooved cases: 0.27 -> 0.35 s)
         problem.direct = problem.grooves is None
         u0 = problem.start_from_line(p1, u1, prm)
-        kept = {"line_result": one}
+        kept = {"line_start": one}
         if informed and self.cell is not None and problem.grooves is not None \
                 and problem.web_edges and self.cell.case == case:
             # the cell's web (its film pressure is made consistent with it before the
