@@ -174,7 +174,7 @@ def sweep(spec: Sweep | str | os.PathLike, model: str = "auto",
     done = 0
     for label, base in spec.series:
         values_ = list(spec.values)
-        cases = [base.updated({spec.parameter: v}) for v in values_]
+        cases = [spec.case_at(base, v) for v in values_]
         for value, res in zip(values_, solve_along(cases, model, options, **values)):
             done += 1
             if progress:

@@ -97,10 +97,12 @@ def load_case(case: str | os.PathLike, overrides: Mapping[str, Any] | None = Non
     return _case.load_case(existing_case(case), overrides)
 
 
-def load_sweep(case: str | os.PathLike, overrides: Mapping[str, Any] | None = None):
+def load_sweep(case: str | os.PathLike, overrides: Mapping[str, Any] | None = None,
+               **command_line):
     """Read a case file's (or a bundled case's) ``[sweep]`` and ``[[series]]`` tables
-    (:func:`webfem.sweepspec.load_sweep`)."""
-    return _sweepspec.load_sweep(existing_case(case), overrides)
+    (:func:`webfem.sweepspec.load_sweep`; ``command_line``: its ``parameter``, ``start``
+    and ``stop``)."""
+    return _sweepspec.load_sweep(existing_case(case), overrides, **command_line)
 
 
 def as_case(case: Case | str | os.PathLike) -> Case:

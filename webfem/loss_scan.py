@@ -15,16 +15,17 @@ from __future__ import annotations
 
 import contextlib
 from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
 
 from threadpoolctl import threadpool_limits
 
 from .api import solve_along
 from .case import Case
-from .errors import ConvergenceError
+from .errors import ConvergenceError, NoAdmissibleSolution
 from .line_speed import at_speed
 from .models.options import Options
 
-__all__ = ["scan", "refine", "crossing", "LOW_SHARE"]
+__all__ = ["scan", "refine", "crossing", "Refused", "LOW_SHARE"]
 
 #: Models that answer a point in about a millisecond or less: a worker process would cost
 #: more than it saves, so their scans stay in this process whatever ``workers`` says.
@@ -37,6 +38,23 @@ _AT_ONCE = ("closed-form", "fitted")
 #: process walks 9 speeds in 1.67 s CPU, the worker 9 and the root find in 1.83 s; with
 #: 0.42, 10 in 1.85 s against 8 and the root find in 1.84 s.
 LOW_SHARE = 0.375
+
+
+@dataclass(frozen=True)
+class Refused:
+    """A scanned speed at which the case is not one the model holds
+    (:class:`~webfem.errors.NoAdmissibleSolution`: the closed form's contact gap above R/100
+    as the moving web's T_eff falls, say): the scan ends at the speed before it, its answer
+    the speeds solved so far. ``speed`` [m/s] the roller's, ``reason`` the model's words."""
+
+    speed: float
+    reason: str
+
+    def error(self, model: str) -> NoAdmissibleSolution:
+        """The error where no speed below was solved: nothing to answer."""
+        return NoAdmissibleSolution(f"traction-loss search: the {model} model has no answer "
+                                    f"at U_r = {self.speed:.4g} m/s, the scan's first speed: "
+                                    f"{self.reason}")
 
 
 def crossing(mu, mu_min: float) -> int | None:
@@ -53,13 +71,20 @@ def crossing(mu, mu_min: float) -> int | None:
 
 def scan(case: Case, speeds, model: str, opts: Options, workers: int = 1,
          stop: float | None = None, xtol: float = 1e-3):
-    """Results at ``speeds`` in order with continuation, the number of solves made, and a
-    worker's refinement of the first crossing (None: refine it with :func:`refine`).
+    """Results at ``speeds`` in order with continuation, the number of solves made, a
+    worker's refinement of the first crossing (None: refine it with :func:`refine`), and
+    where the scan ended early: a :class:`Refused` speed, or None.
 
-    A failed solve is an error naming its speed (a scan with a hole could miss the
-    crossing). ``stop``: end the walk at the first crossing of ``stop``
-    (:func:`crossing`); the results then end there. An FE model's speeds are walked in two
-    runs (:func:`_in_runs`), the second from a cold start, on a worker process where
+    A speed the model refuses (:class:`~webfem.errors.NoAdmissibleSolution`) before any
+    crossing ends the scan there: the results are the speeds below it (the speeds above
+    are not walked: a scan with a hole could miss the crossing), and the :class:`Refused`
+    says why; refused at the first speed, it is an error. A solve that does not converge
+    before any crossing ends the walk too, its ConvergenceError (naming the speed) in place
+    of the :class:`Refused`: the caller raises it, saying what the speeds below found.
+
+    ``stop``: end the walk at the first crossing of ``stop`` (:func:`crossing`); the
+    results then end there. An FE model's speeds are walked in two runs
+    (:func:`_in_runs`), the second from a cold start, on a worker process where
     ``workers`` > 1 (more than 2 are not used): the same results either way; the worker's
     refinement, if any, is ``((a, b), speed, cache)`` as :func:`refine`'s between the scan
     speeds ``a`` and ``b``, to ``xtol``.
@@ -67,9 +92,7 @@ def scan(case: Case, speeds, model: str, opts: Options, workers: int = 1,
     if len(speeds) > 2 and model not in _AT_ONCE:
         return _in_runs(case, speeds, model, opts, workers > 1, stop, xtol)
     out, err = _walk(case, speeds, model, opts, stop=stop)
-    if err is not None:
-        raise err
-    return out, len(out), None
+    return _ended(out, len(out), err, model)
 
 
 def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b,
@@ -91,7 +114,7 @@ def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b
             nearest = cache[min(cache, key=lambda v: abs(v - u))]
             out, err = _walk(case, [u], model, opts, initial=nearest)
             if err is not None:
-                raise err
+                raise err.error(model) if isinstance(err, Refused) else err
             cache[u] = out[0]
         return cache[u]["mu"] - mu_min
 
@@ -101,8 +124,8 @@ def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b
 def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
           stop: float | None = None):
     """:func:`scan`'s serial walk: ``(results, None)``, or the results before a solve that
-    raised and its error (a ConvergenceError naming its speed): returned, so a worker sends
-    it back with the results before it."""
+    raised and why: a :class:`Refused` speed, a ConvergenceError naming its speed or another
+    error; returned, so a worker sends it back with the results before it."""
     # the line moves: the web keeps the case's ratio to the roller (webfem.line_speed)
     cases = [at_speed(case, float(u)) for u in speeds]
     out: list = []
@@ -111,6 +134,9 @@ def _walk(case: Case, speeds, model: str, opts: Options, initial=None,
             out.append(res)
             if stop is not None and crossing([r["mu"] for r in out], stop) is not None:
                 break
+    except NoAdmissibleSolution as err:
+        # the case at this speed is not one the model holds: the scan's answer ends below it
+        return out, Refused(float(speeds[len(out)]), " ".join(str(err).split()))
     except ConvergenceError as err:
         u = float(speeds[len(out)])
         return out, ConvergenceError(f"traction-loss search: the {model} solve at U_r = "
@@ -192,7 +218,16 @@ def _in_runs(case: Case, speeds, model: str, opts: Options, parallel: bool,
     j = None if stop is None else crossing([r["mu"] for r in out], stop)
     if j is not None:
         bracket = (float(speeds[j - 1]), float(speeds[j]))
-        return out[:j + 1], solved, refined if refined and refined[0] == bracket else None
-    if why is not None:    # before any crossing: the scan cannot answer past it
-        raise why
-    return out, solved, None
+        kept = refined if refined and refined[0] == bracket else None
+        return out[:j + 1], solved, kept, None
+    return _ended(out, solved, why, model)
+
+
+def _ended(out, solved: int, why, model: str):
+    """:func:`scan`'s answer without a crossing to refine, the walk ended at ``why`` (None:
+    it reached its last speed): a refused speed or a solve that did not converge after
+    solved ones ends the scan there (the caller says what the speeds below found, and
+    raises the latter); a first speed refused, or any other error, is raised."""
+    if why is None or (isinstance(why, (Refused, ConvergenceError)) and out):
+        return out, solved, None, why
+    raise why.error(model) if isinstance(why, Refused) else why

@@ -1,7 +1,8 @@
 """Sweep specifications: one swept case key, its values, and the series (curve families).
 
 A :class:`Sweep` is checked on creation, like a :class:`~webfem.case.Case`: the swept key
-is a numeric case key, the values are distinct finite numbers, the series labels are
+is a numeric case key or ``line.speed`` (:data:`webfem.line_speed.LINE_SPEED`: roller and web
+together at the case's U_w/U_r, where ``roller.speed`` moves the roller alone), the values are distinct finite numbers, the series labels are
 distinct non-empty text, and every point is a valid case, so a long sweep never fails half
 way on its input. Sizes are bounded: at most :data:`MAX_VALUES` values per series,
 :data:`MAX_SERIES` series and :data:`MAX_POINTS` points in all (each point is a solve).
@@ -34,9 +35,12 @@ import numpy as np
 from .case import Case, case_from_tables, read_toml
 from .errors import InputError, show
 from .keys import flatten, is_key, is_numeric, key_meta, unknown_key, valid_keys
+from .line_speed import LINE_SPEED, holds_web_speed, line_at
+from .physics.effects import states_load
 from .units import examples, to_si
 
-__all__ = ["MAX_POINTS", "MAX_SERIES", "MAX_VALUES", "Sweep", "load_sweep"]
+__all__ = ["MAX_POINTS", "MAX_SERIES", "MAX_VALUES", "Sweep", "load_sweep",
+           "is_numeric_parameter"]
 
 #: Most values per series (``values``, ``num``, ``--num``).
 MAX_VALUES = 10_000
@@ -64,7 +68,7 @@ def _finite(name: str, value: Any, where: str = "", key: str | None = None) -> f
     """A finite number; with the swept ``key``, text with a unit ("600 m/min") is converted
     to the key's SI unit, as a case file's keys are."""
     if isinstance(value, str) and key is not None:
-        unit = key_meta(key)["unit"]
+        unit = key_meta(_unit_key(key))["unit"]
         try:
             value = to_si(key, value, unit)
         except InputError as err:
@@ -72,8 +76,9 @@ def _finite(name: str, value: Any, where: str = "", key: str | None = None) -> f
                              f"{key} (a number in {unit}, or text with a unit): {err}") \
                 from None
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        unit = f" in {key_meta(key)['unit']} or text with a unit such as " \
-               f"'{examples(key, key_meta(key)['unit'])[0]}'" if key is not None else ""
+        meta = key_meta(_unit_key(key)) if key is not None else None
+        unit = f" in {meta['unit']} or text with a unit such as " \
+               f"'{examples(_unit_key(key), meta['unit'])[0]}'" if meta else ""
         raise InputError(f"{name} = {show(value)}{where} is not a number: "
                          f"must be a finite number{unit}")
     try:
@@ -86,15 +91,26 @@ def _finite(name: str, value: Any, where: str = "", key: str | None = None) -> f
     return x
 
 
+def _unit_key(parameter: str) -> str:
+    """The case key whose unit and spellings ``parameter`` takes: roller.speed's for
+    :data:`~webfem.line_speed.LINE_SPEED`, else the key itself."""
+    return "roller.speed" if parameter == LINE_SPEED else parameter
+
+
 def _check_parameter(parameter: Any, where: str = "") -> None:
     if not isinstance(parameter, str):
         raise InputError(f"sweep.parameter = {show(parameter)}{where} is not valid: "
                          "must be a case key such as 'roller.speed'")
+    if parameter == LINE_SPEED:   # the line: roller and web at the case's ratio
+        return
     if not is_key(parameter):
-        raise unknown_key(parameter, where + " (sweep.parameter)")
+        if difflib.get_close_matches(parameter, [LINE_SPEED], n=1, cutoff=0.8):
+            raise InputError(f"unknown sweep parameter '{parameter}'{where}; did you mean "
+                             f"'{LINE_SPEED}'?")
+        raise unknown_key(parameter, where or " (sweep.parameter)")
     if not is_numeric(parameter):
         raise InputError(f"sweep.parameter = {parameter!r}{where} is not a numeric key: "
-                         "a sweep varies a number; numeric keys: "
+                         f"a sweep varies a number; numeric keys: {LINE_SPEED} (the line), "
                          + ", ".join(k for k in valid_keys() if is_numeric(k)))
 
 
@@ -145,12 +161,13 @@ def _check_series(series: Any) -> tuple[tuple[str, Case], ...]:
 
 @dataclass(frozen=True)
 class Sweep:
-    """A parameter sweep: one swept dotted key and one or more curve families (series).
+    """A parameter sweep: one swept dotted key (or ``line.speed``, :meth:`case_at`) and one
+    or more curve families (series).
 
     TOML::
 
         [sweep]
-        parameter = "roller.speed"
+        parameter = "roller.speed"   # or "line.speed": web and roller together
         start = 0.5
         stop = 40.0
         num = 60            # or: values = [1, 2, 5]; spacing = "linear" | "log"
@@ -176,16 +193,45 @@ class Sweep:
         for label, base in series:  # every point now, so a long sweep never fails half way
             for value in values:
                 try:
-                    base.updated({self.parameter: value})
+                    self.case_at(base, value)
                 except InputError as err:
                     raise InputError(f"{err} (series '{label}', {self.parameter} = "
                                      f"{value:g})") from None
+
+    def case_at(self, base: Case, value: float) -> Case:
+        """``base`` at swept ``value``: the key set, or for :data:`LINE_SPEED` the line
+        moved (:func:`webfem.line_speed.line_at`: roller and web at the case's ratio)."""
+        if self.parameter == LINE_SPEED:
+            return line_at(base, value)
+        return base.updated({self.parameter: value})
 
     def points(self) -> Iterator[tuple[str, float, Case]]:
         """Yield ``(series_label, value, case)`` for every point of every series."""
         for label, base in self.series:
             for value in self.values:
-                yield label, value, base.updated({self.parameter: value})
+                yield label, value, self.case_at(base, value)
+
+    def held_web_speed(self) -> str | None:
+        """One line of warning where this sweep moves ``roller.speed`` alone on an idler or
+        a case with a web speed set (:func:`webfem.line_speed.holds_web_speed`): the web
+        speed is held, so the sweep is one of the draw U_r - U_w too; else None."""
+        if self.parameter != "roller.speed":
+            return None
+        held = [(label, c) for label, c in self.series if holds_web_speed(c)]
+        if not held:
+            return None
+        label, c = held[0]
+        where = "" if len(self.series) == 1 else f" (series '{label}')"
+        if states_load(c):
+            what = (f"on an idler{where}: the web speed is held at {c.web.speed:g} m/s, so "
+                    "the roller slides under the web at every other speed, which an idler "
+                    "(its roller driven by the web) does not do")
+        else:
+            what = (f"with web.speed = {c.web.speed:g} m/s{where}: the web speed is held, so "
+                    "the sweep moves the roller alone and the sliding speed U_r - U_w with it")
+        return (f"sweep.parameter = roller.speed {what}; to move web and roller together at "
+                f"the case's U_w/U_r, sweep {LINE_SPEED} ([sweep] parameter = "
+                f"\"{LINE_SPEED}\", or --parameter {LINE_SPEED})")
 
     def respaced(self, num: int | None, log: bool = False) -> "Sweep":
         """The same range (smallest to largest value) in ``num`` points, evenly spaced, or
@@ -266,8 +312,56 @@ def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
     return series or [("base", case)]
 
 
+def _command_line(spec: Mapping[str, Any], where: str, parameter: str | None,
+                  span: tuple | None) -> dict:
+    """The ``[sweep]`` table as the command line changes it: ``parameter`` (--parameter)
+    swept instead of the table's, over ``span`` (--start, --stop: numbers or text with a
+    unit of the parameter; the table's num and spacing kept where it has them), or over the
+    table's values where both measure the same quantity."""
+    spec = dict(spec)
+    table = spec.get("parameter", "roller.speed")
+    if parameter is not None:
+        _check_parameter(parameter, " (--parameter)")
+        spec["parameter"] = parameter
+    swept = spec["parameter"] if isinstance(spec.get("parameter"), str) else table
+    if span is not None:
+        if any(v is None for v in span):
+            raise InputError("--start and --stop go together: give both ends of the range")
+        start, stop = (_finite(name, _number(v), "", swept)
+                       for name, v in zip(("--start", "--stop"), span))
+        num = spec.get("num", len(spec["values"]) if isinstance(spec.get("values"), list)
+                       else _DEFAULT_NUM)
+        spacing = spec.get("spacing", "linear") if "values" not in spec else "linear"
+        spec = {"parameter": swept, "start": start, "stop": stop, "num": num,
+                "spacing": spacing}
+    elif parameter is not None and table != parameter and not (
+            isinstance(table, str) and is_numeric_parameter(table)
+            and key_meta(_unit_key(table))["unit"] == key_meta(_unit_key(parameter))["unit"]):
+        raise InputError(f"--parameter {parameter}: the [sweep] values{where} are values of "
+                         f"{table}, not of {parameter}; give the range with --start and "
+                         "--stop")
+    return spec
+
+
+def _number(text: Any) -> Any:
+    """A bare number given as text on the command line ("5"), as a number; anything else
+    as it is (text with a unit is read by :func:`_finite`)."""
+    if isinstance(text, str):
+        try:
+            return float(text)
+        except ValueError:
+            pass
+    return text
+
+
+def is_numeric_parameter(parameter: str) -> bool:
+    """True for a parameter a sweep may vary: a numeric case key or :data:`LINE_SPEED`."""
+    return parameter == LINE_SPEED or (is_key(parameter) and is_numeric(parameter))
+
+
 def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
-                     overrides: Mapping[str, Any] | None = None) -> Sweep:
+                     overrides: Mapping[str, Any] | None = None,
+                     parameter: str | None = None, span: tuple | None = None) -> Sweep:
     spec = data.get("sweep", {})
     if not isinstance(spec, Mapping):
         raise InputError(f"sweep = {show(spec)}{where} is not valid: must be a [sweep] "
@@ -278,6 +372,10 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
             hint = (f"; did you mean '{close[0]}'?" if close
                     else "; valid: " + ", ".join(_SWEEP_KEYS))
             raise InputError(f"unknown key 'sweep.{key}'{where}{hint}")
+    if parameter is not None or span is not None:
+        spec = _command_line(spec, where, parameter, span)
+        if "sweep" in data or span is not None:   # else the default range, as without
+            data = {**data, "sweep": spec}
     parameter = spec.get("parameter", "roller.speed")
     _check_parameter(parameter, where)
     if overrides and parameter in overrides:
@@ -295,8 +393,14 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
         raise InputError(f"{err}{where}") from None
 
 
-def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Sweep:
-    """Read a case TOML file with its ``[sweep]`` and ``[[series]]`` tables."""
+def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None,
+               parameter: str | None = None, start=None, stop=None) -> Sweep:
+    """Read a case TOML file with its ``[sweep]`` and ``[[series]]`` tables; ``parameter``,
+    ``start`` and ``stop`` (the command line's --parameter, --start, --stop) change the
+    table's: another parameter over the table's values (where they measure the same
+    quantity, e.g. ``roller.speed`` to ``line.speed``) or over ``start..stop`` (both given;
+    numbers in the parameter's SI unit or text with a unit, "600 m/min")."""
     data, where = read_toml(path)
     case = case_from_tables(data, where, overrides)
-    return _sweep_from_dict(case, data, where, overrides)
+    span = None if start is None and stop is None else (start, stop)
+    return _sweep_from_dict(case, data, where, overrides, parameter, span)

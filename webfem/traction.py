@@ -24,10 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .case import Case
-from .errors import InputError
+from .errors import ConvergenceError, InputError
 from .keys import key_meta
 from .line_speed import at_speed, ratio_text, speed_ratio, top_speed
-from .loss_scan import refine, scan
+from .loss_scan import crossing, refine, scan
 from .models.options import Options
 from .models.registry import make_options, model_spec
 
@@ -55,6 +55,14 @@ class TractionLoss:
     choice there, or ``model`` itself; ``models_used``: every model that answered a solve
     of the search, in the order first used. ``web_speed_ratio``: U_w/U_r kept at every
     scanned speed (:mod:`webfem.line_speed`; None: the roller at rest, the web speed kept).
+    ``scan_limit``: why the speeds above ``scanned[1]`` could not be scanned where the
+    scan's range ends below the one asked (None where it covered it, or where the scan
+    stopped at its crossing below that end, which the speeds above cannot move): the line
+    itself is not
+    possible above it (T_eff <= 0, a film thicker than R/100:
+    :func:`webfem.line_speed.top_speed`) or the model has no answer at the next scan speed
+    (:class:`webfem.loss_scan.Refused`). With ``speed`` None it bounds the answer: mu stays
+    on its side of ``mu_min`` up to ``scanned[1]``, what lies above is not known.
     """
 
     speed: float | None
@@ -69,6 +77,7 @@ class TractionLoss:
     models_used: tuple[str, ...] = ()
     scanned: tuple[float, float] | None = None
     web_speed_ratio: float | None = None
+    scan_limit: str | None = None
 
     def answered(self) -> str:
         """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
@@ -180,13 +189,15 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
         raise InputError(f"full_scan = {full_scan!r} is not valid: must be True or False")
     opts = make_options(model, options, **values)
     note = capped = ""
+    limit = None
     top, why = top_speed(case, hi)
     if why:   # the line flies off the roller or out of the thin-film bound above ``top``
         if top <= lo:
             raise InputError(f"speed range = {speed_range!r} is out of range: at U_r = "
                              f"{max(lo, 1e-3):g} m/s ({ratio_text(case)}) {why}")
         hi = top
-        capped = f" (the scan ends at U_r = {top:.4g} m/s: above it {why})"
+        limit = f"above U_r = {top:.4g} m/s {why}"
+        capped = f" (the scan ends at U_r = {top:.4g} m/s, the last possible speed: {limit})"
     if model == "fitted":       # scan the speeds its domain holds (it refuses the others)
         lo_in, hi_in = fitted_speed_range(case, max(lo, 1e-3), hi)
         if (lo_in, hi_in) != (max(lo, 1e-3), hi):
@@ -194,8 +205,8 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                     " m/s)")
         lo, hi = lo_in, hi_in
     speeds = np.geomspace(max(lo, 1e-3), hi, n_scan)
-    results, solved, refined = scan(case, speeds, model, opts, workers=workers,
-                                    stop=None if full_scan else mu_min, xtol=xtol)
+    results, solved, refined, ended = scan(case, speeds, model, opts, workers=workers,
+                                           stop=None if full_scan else mu_min, xtol=xtol)
     # a stopped scan's results end at its first crossing: the search below finds it again
     # (every speed between mu's first reaching mu_min and it is at or above mu_min)
     mu = np.array([r["mu"] for r in results], float)
@@ -205,20 +216,37 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
                  speed_peak=float(speeds[i_peak]), evaluations=solved, bracket=None,
                  speed=None, model_used=_used(results[i_peak]), models_used=tuple(used),
                  scanned=(float(speeds[0]), float(speeds[len(results) - 1])),
-                 web_speed_ratio=speed_ratio(case))
-    if len(results) < n_scan:
-        note = (f" (the scan stopped at {speeds[len(results) - 1]:.4g} m/s, its first speed "
-                f"below it){note}")
+                 web_speed_ratio=speed_ratio(case), scan_limit=limit)
+    last = float(speeds[len(results) - 1])
+    if isinstance(ended, ConvergenceError) and crossing(mu, mu_min) is None:
+        # a failed solve is no answer about the speeds above it, but those below stand
+        side = ("reaches it and does not fall below it" if mu[i_peak] >= mu_min
+                else "stays below")
+        raise ConvergenceError(f"{ended}; below it, at {lo:.4g}..{last:.4g} m/s, mu {side} "
+                               f"(mu_min = {mu_min:g}; peak {mu[i_peak]:.4g} at "
+                               f"{speeds[i_peak]:.3g} m/s; {ratio_text(case)})",
+                               ended.result, ended.history)
+    if ended is not None:
+        # the model refused the next speed (or, in a full scan past its crossing, failed
+        # there): the answer is the speeds below it, said so
+        found["scan_limit"] = (" ".join(str(ended).split())
+                               if isinstance(ended, ConvergenceError)
+                               else f"at U_r = {ended.speed:.4g} m/s, {ended.reason}")
+        note = (f" (the scan ends at U_r = {last:.4g} m/s, the last speed answered: "
+                f"{found['scan_limit']}){note}")
+    elif len(results) < n_scan:
+        found["scan_limit"] = None   # stopped at its crossing: the speeds above are not needed
+        note = f" (the scan stopped at {last:.4g} m/s, its first speed below it){note}"
     else:   # the scan reached its top: say why that is below the range asked for
         note = f"{capped}{note}"
     note = f"{note}; {ratio_text(case)}"
     if mu[i_peak] < mu_min:
         return TractionLoss(**found, message=(
-            f"mu stays below {mu_min:g} at every speed in {lo:.4g}..{hi:.4g} m/s (peak "
+            f"mu stays below {mu_min:g} at every speed in {lo:.4g}..{last:.4g} m/s (peak "
             f"{mu[i_peak]:.4g} at {speeds[i_peak]:.3g} m/s){note}"))
     after = np.nonzero(mu[i_peak:] < mu_min)[0]
     if after.size == 0:
-        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {hi:.4g} m/s"
+        return TractionLoss(**found, message=f"mu stays above {mu_min:g} up to {last:.4g} m/s"
                                           f"{note}")
     j = i_peak + int(after[0])
     a, b = float(speeds[j - 1]), float(speeds[j])

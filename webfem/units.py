@@ -246,6 +246,8 @@ ROLES = {
     **dict.fromkeys(("roller.roughness", "web.roughness", "web.thickness",
                      "air.mean_free_path"), "thin"),
     **dict.fromkeys(("roller.speed", "web.speed", "friction.speed_constant"), "speed"),
+    # the sweep parameter that moves the line (webfem.line_speed.LINE_SPEED)
+    "line.speed": "speed",
     "web.tension": "tension", "wrap.angle_deg": "angle", "air.ambient_pressure": "pressure",
     **dict.fromkeys(("roller.drag_torque", "web.bending_stiffness"), "torque"),
     # groove designs (webfem.groove_sizing.GrooveDesign): speed, groove pitch, width, depth

@@ -49,7 +49,10 @@ def _sweep_lines() -> list[str]:
         "[sweep]             (read by `webfem sweep`; without it the sweep is the paper's "
         "roller speed range)",
         row.format("parameter", "the swept numeric case key, e.g. \"roller.speed\" (the "
-                                "default) or \"web.tension\""),
+                                "default; moves the roller alone) or \"web.tension\"; or "
+                                "\"line.speed\" [m/s] (e.g. \"600 m/min\"): roller and web "
+                                "together at the case's U_w/U_r, as an idler's line moves "
+                                "(`webfem sweep --parameter` on the command line)"),
         row.format("values", f"the swept values, e.g. [1.0, 2.5, 5.0]: 1 to {MAX_VALUES} "
                              "distinct finite numbers, SI or text with a unit of the "
                              "swept key (\"600 m/min\"); or instead:"),

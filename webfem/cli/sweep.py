@@ -43,6 +43,16 @@ def add_parser(subparsers) -> None:
     add_quiet_argument(p)
     p.add_argument("--vtu", metavar="DIR",
                    help="also write VTU files per point and a .pvd collection per series")
+    p.add_argument("--parameter", metavar="KEY",
+                   help="sweep KEY instead of [sweep]'s parameter, over its values where "
+                        "they measure the same quantity, else over --start..--stop; e.g. "
+                        "line.speed: roller and web together at the case's U_w/U_r (the "
+                        "web's speed where the roller stands still), where roller.speed "
+                        "moves the roller alone")
+    p.add_argument("--start", metavar="VALUE",
+                   help="with --stop: sweep from VALUE (SI or with a unit, e.g. "
+                        "'300 m/min'), in [sweep]'s num (default 40) evenly spaced values")
+    p.add_argument("--stop", metavar="VALUE", help="with --start: sweep to VALUE")
     p.add_argument("--num", type=int,
                    help="override the number of swept values (same range)")
     p.add_argument("--log", action="store_true",
@@ -64,8 +74,12 @@ def run(args) -> int:
     from ..io.vtu import SweepVtu
     from ..sweeps import run as run_sweep
 
-    spec = load_sweep(args.case, overrides(args))
+    spec = load_sweep(args.case, overrides(args), parameter=args.parameter,
+                      start=args.start, stop=args.stop)
     announce_case(args)
+    held = spec.held_web_speed()
+    if held:   # roller.speed on an idler or a moving web: a draw the user may not mean
+        print(f"webfem: warning: {held}", file=sys.stderr)
     if args.num is not None or args.log:
         spec = spec.respaced(args.num, log=args.log)   # --log without --num is an error
     options = model_options(args)

@@ -51,7 +51,9 @@ def add_parser(subparsers) -> None:
                    help="one JSON object: speed (U_r in m/s, null if none), model, mu_min, "
                         "mu_peak, speed_peak, bracket, scanned, evaluations, message, "
                         "web_speed_ratio (U_w/U_r kept; null: roller at rest, web speed "
-                        "kept); units: SI)")
+                        "kept), scan_limit (why the speeds above scanned[1] were not "
+                        "scanned: T_eff <= 0, a film thicker than R/100, the model's "
+                        "refusal; null: the range or a crossing ended the scan); units: SI")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR: each over the paper's range where that "

@@ -38,6 +38,7 @@ def _f(row: dict, key: str) -> float:
 
 #: What the parameters a sweep usually runs over are called on an axis (the unit follows).
 _PARAMETER_NAMES = {"roller.speed": "roller speed U_r", "web.speed": "web speed U_w",
+                    "line.speed": "line speed U_r (web at the case's U_w/U_r)",
                     "web.tension": "web tension T", "wrap.angle_deg": "wrap angle B",
                     "web.width": "web width L", "roller.radius": "roller radius R",
                     "web.roughness": "web roughness sigma_w",

@@ -89,8 +89,12 @@ def no_answer_reason(code: int, case: Case, s: dict) -> str:
             keys = (f"web.roughness = {w.roughness:g} m"
                     + (f", roller.roughness = {case.roller.roughness:g} m, friction.roughness"
                        " = composite" if f.roughness == "composite" else ""))
+            # the moving web's inertia lowers the load, so h_c rises with the line's speed
+            load = ("T/R" if case.web_inertia <= 0.0 else
+                    f"T_eff/R (T_eff = {case.tension_eff:.3g} N/m after the moving web's "
+                    "inertia)")
             return (f"the contact gap h_c = {s['h_c']:.3g} m, where the asperities alone "
-                    f"carry T/R, is more than R/100 = {limit:.2g} m (roller.radius = {R:g} "
+                    f"carry {load}, is more than R/100 = {limit:.3g} m (roller.radius = {R:g} "
                     f"m; valid: h_c < R/100): the roughness sigma = {case.sigma:.3g} m "
                     f"({keys}) is far too coarse for a thin film on this roller; lower it")
         return (f"Eq. 21's inlet gap h_inlet = {s['h_inlet']:.3g} m is more than R/100 = "

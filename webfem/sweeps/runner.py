@@ -65,7 +65,7 @@ def _checked(spec, workers, chunk, dask) -> list[_Point]:
             raise InputError(f"{name} = {value!r} is out of range: must be an integer >= 1"
                              + (f" and <= {hi}" if hi else ""))
     check_dask(dask)
-    points = [_Point(si, pi, label, float(value), base.updated({spec.parameter: value}))
+    points = [_Point(si, pi, label, float(value), spec.case_at(base, value))
               for si, (label, base) in enumerate(spec.series)
               for pi, value in enumerate(spec.values)]
     if not points:
