@@ -63,6 +63,13 @@ class TractionLoss:
     :func:`webfem.line_speed.top_speed`) or the model has no answer at the next scan speed
     (:class:`webfem.loss_scan.Refused`). With ``speed`` None it bounds the answer: mu stays
     on its side of ``mu_min`` up to ``scanned[1]``, what lies above is not known.
+    ``speed_interval``: the speeds [m/s] between which mu's stated error band reaches
+    ``mu_min`` (:func:`speed_interval`): the first where mu less its stated error falls to
+    it, the first where mu plus its stated error does; an end is None where the solved
+    speeds do not show it (a stated error missing, the band reaching mu_min at the peak, or
+    above the last speed solved). ``error_speed``: the larger distance from ``speed`` to
+    an end, relative to ``speed`` (None where an end is not known); it holds Brent's
+    tolerance too, ``speed`` being the root find's answer, within ``xtol`` of the crossing.
     """
 
     speed: float | None
@@ -78,6 +85,8 @@ class TractionLoss:
     scanned: tuple[float, float] | None = None
     web_speed_ratio: float | None = None
     scan_limit: str | None = None
+    speed_interval: tuple[float | None, float | None] | None = None
+    error_speed: float | None = None
 
     def answered(self) -> str:
         """``fe2d``, or for auto ``auto: fe2d`` (``auto: fe2d; the scan also used fe1d``)."""
@@ -259,8 +268,77 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     at = cache[min(cache, key=lambda v: abs(v - speed))]
     used += [m for m in dict.fromkeys(_used(r) for r in cache.values()) if m not in used]
     found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))
+    low, high = speed_interval(list(results) + list(cache.values()), mu_min,
+                               float(speeds[i_peak]))
+    found.update(speed_interval=(low, high), error_speed=(
+        max(abs(speed - low), abs(high - speed)) / speed
+        if low is not None and high is not None else None))
     return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s"
-                                      f"{note}")
+                                      f" ({interval_text(low, high, speed)}){note}")
+
+
+def interval_text(low: float | None, high: float | None, speed: float) -> str:
+    """The stated interval of a traction-loss speed in words, for its message."""
+    if low is not None and high is not None:
+        error = max(abs(speed - low), abs(high - speed)) / speed
+        # enough digits that the interval's ends differ where the error is small
+        digits = max(4, 2 + math.ceil(-math.log10(max(error, 1e-12))))
+        return (f"stated interval {low:.{digits}g}..{high:.{digits}g} m/s, where mu's stated "
+                f"error band reaches mu_min; error {error:.2g}")
+    start = f"{low:.4g} m/s" if low is not None else "the peak"
+    end = f"{high:.4g} m/s" if high is not None else "above the last speed solved"
+    return (f"no stated error: within mu's stated error, mu may reach mu_min anywhere from "
+            f"{start} to {end}")
+
+
+def speed_interval(results, mu_min: float, after: float) -> tuple[float | None, float | None]:
+    """Where mu's stated error band reaches ``mu_min`` after the peak speed ``after``: the
+    first speed at which mu - e falls to ``mu_min`` and the first at which mu + e does, e
+    being mu's stated error in absolute terms (``error_mu`` times its scale,
+    :func:`webfem.models.readout.error_scale`), each interpolated linearly between the
+    solved speeds ``results`` (results of any order). An end is None where they do not show
+    it: a result without a stated error on the way, the band's low side at or below
+    ``mu_min`` already at the peak (the loss may come earlier than any speed solved after
+    it), or the band's high side still above ``mu_min`` at the last speed solved.
+
+    >>> import webfem
+    >>> rs = [webfem.solve(Case().updated({"roller.speed": u}), model="closed-form")
+    ...       for u in (10.0, 20.0, 30.0, 40.0)]
+    >>> low, high = speed_interval(rs, 0.1, 10.0)   # Eq. 21's mu band (error 0.5) at 0.1
+    >>> round(low, 1), round(high, 1)
+    (16.3, 36.5)
+    """
+    from .models.readout import error_scale
+
+    points = []
+    for r in sorted(results, key=lambda r: r.case.roller.speed):
+        u, mu = r.case.roller.speed, r["mu"]
+        if u < after:
+            continue
+        try:
+            error = r["error_mu"]
+        except KeyError:
+            error = None
+        if error is None or not math.isfinite(error):
+            points.append((u, mu, math.nan))
+            continue
+        points.append((u, mu, error * error_scale(r.case, "mu", mu)))
+
+    def first_below(sign: float) -> float | None:
+        prev = None
+        for u, mu, e in points:
+            g = mu + sign * e - mu_min
+            if not math.isfinite(g):
+                return None
+            if g <= 0.0:
+                if prev is None:
+                    return None
+                u0, g0 = prev
+                return u0 + (u - u0) * g0 / (g0 - g)
+            prev = (u, g)
+        return None
+
+    return first_below(-1.0), first_below(+1.0)
 
 
 def fitted_speed_range(case: Case, lo: float, hi: float, n: int = 400) -> tuple[float, float]:

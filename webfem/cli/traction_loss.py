@@ -53,7 +53,11 @@ def add_parser(subparsers) -> None:
                         "web_speed_ratio (U_w/U_r kept; null: roller at rest, web speed "
                         "kept), scan_limit (why the speeds above scanned[1] were not "
                         "scanned: T_eff <= 0, a film thicker than R/100, the model's "
-                        "refusal; null: the range or a crossing ended the scan); units: SI")
+                        "refusal; null: the range or a crossing ended the scan), "
+                        "speed_interval (the speeds where mu's stated error band reaches "
+                        "mu_min; an end null where the speeds solved do not show it), "
+                        "error_speed (the interval's larger half over speed; null without "
+                        "both ends); units: SI")
     p.add_argument("--chart", metavar="DIR",
                    help="also chart the traction-loss speed against T, B, L and R (closed "
                         "form and --model) into DIR: each over the paper's range where that "
