@@ -23,7 +23,7 @@ def minimum(problem, u, prm) -> tuple[float, float]:
     adjacent cells. The last state's answer is kept on the problem (a pure function of its
     arguments): a solved state is asked for its minimum by its read-out, the admissibility
     check and the driver's resting test in turn (on the base case's 24-point speed sweep
-    207 calls for about 110 states)."""
+    62 of its 211 calls find it kept, 124 of 1,312 gap evaluations fewer)."""
     kept = getattr(problem, "_minimum", None)
     if kept is not None and kept[1] is prm and kept[0].shape == np.shape(u) \
             and np.array_equal(kept[0], u):
