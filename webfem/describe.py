@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .physics.effects import margin_range, margin_verdict
 
-__all__ = ["describe", "verdict", "traction_text", "error_text", "resting_text",
+__all__ = ["describe", "verdict", "idler_verdict", "small_text", "traction_text", "error_text", "resting_text",
            "contact_gap_text", "level_words", "regime_text"]
 
 _NAMES = {"h_center": "h_center", "h_min": "h_min", "mu": "mu",
@@ -91,34 +91,77 @@ def regime_text(s, case=None) -> str:
 
 
 
-def verdict(s, case=None) -> str:
-    """The idler's one-line answer from a summary with an idler check; with the ``case``,
-    ``unsure`` where mu's stated error puts the margin on both sides of 1
-    (:func:`webfem.physics.effects.margin_range`).
+#: Below this a margin, a traction or mu_onset prints as "< 0.001": 1e-112 is no figure an
+#: engineer reads, and the JSON keeps the number.
+SMALL = 1e-3
 
-    The check is at the onset of slip, U_r = U_w. Where the case's speeds differ the web
-    already slides on the roller, which is then driven (or slipping), not an idler turning
-    with the web: the line says so and words the verdict as what an idler would do.
+
+def small_text(value: float, spec: str = ".2g") -> str:
+    """``value`` formatted by ``spec``, or ``< 0.001`` where it is positive and below
+    :data:`SMALL` (0 stays 0).
+
+    >>> small_text(7.93e-112), small_text(0.0), small_text(1.234, ".3g"), small_text(2e-3)
+    ('< 0.001', '0', '1.23', '0.002')
     """
-    sliding = case is not None and case.U_slide != 0.0 and case.web.speed > 0.0
-    head = (f"  idler check at the onset of slip (U_r = U_w; here the web slides at U_s = "
-            f"{case.U_slide:.4g} m/s, so this roller is driven or already slipping, not an "
-            "idler turning with the web): an idler would " if sliding else "  idler ")
-    if case is not None and s.error_mu is not None:
-        low, high = margin_range(case, s.delta_T_required, s.mu_onset, s.error_mu)
+    if value is not None and 0.0 < value < SMALL:
+        return f"< {SMALL:g}"
+    return format(value, spec)
+
+
+def idler_verdict(s, case=None) -> tuple[str, str] | None:
+    """The idler's answer from a summary, as ``(word, sentence)``: the word ``holds``,
+    ``unsure``, ``slips`` or ``not judged``, the sentence with the traction needed and
+    available; None where the case states no idler load. One text for ``webfem solve``
+    (:func:`verdict`) and the report's headline and warnings.
+
+    With the ``case``, ``unsure`` where mu's stated error puts the margin on both sides of
+    1 (:func:`webfem.physics.effects.margin_range`). The check is at the onset of slip,
+    U_r = U_w. Where the case's speeds differ the web already slides on the roller, which is
+    then driven (or slipping), not an idler turning with the web, and its film is not an
+    idler's: the sentence says so, and words what an idler would do from the second solve
+    at U_r = U_w that supplied the margin (``idler_basis``), or that this solve cannot judge
+    it.
+    """
+    if s.get("delta_T_required") is None:
+        return None
+    sliding = case is not None and case.U_slide != 0.0
+    need = f"needs {small_text(s.delta_T_required, '.3g')} N/m"
+    if sliding:
+        basis = s.get("idler_basis")
+        head = (f"idler check at the onset of slip (U_r = U_w; here the web slides at U_s = "
+                f"{case.U_slide:.4g} m/s, so this roller is driven or already slipping, not "
+                "an idler turning with the web")
+        if s.slip_margin is None:
+            why = (basis or "this solve's film is not an idler's (an idler turns with the "
+                   "web and entrains other air): `webfem solve` with roller.speed = "
+                   "web.speed, or `webfem idler`, judges it")
+            return "not judged", f"{head}): not judged; {why} ({need})"
+        head += f"; from {basis}" if basis else ""
+        head += "): an idler would "
+    else:
+        head = "idler "
+    error = s.get("error_mu_onset") if sliding else s.get("error_mu")
+    carry = (f"can carry {small_text(s.delta_T_available, '.3g')} N/m at mu_onset "
+             f"{small_text(s.mu_onset, '.3g')}")
+    if case is not None and error is not None:
+        low, high = margin_range(case, s.delta_T_required, s.mu_onset, error)
         if margin_verdict(low, high) == "unsure":
-            return (f"{head}{'be ' if sliding else ''}unsure: margin {s.slip_margin:.2g}, but "
-                    f"mu's stated error allows "
-                    f"{low:.2g} to {high:.2g} (needs {s.delta_T_required:.3g} N/m, can carry "
-                    f"{s.delta_T_available:.3g} N/m at mu_onset {s.mu_onset:.3g}); a finer "
-                    "model decides")
+            return "unsure", (f"{head}{'be ' if sliding else ''}unsure: margin "
+                              f"{small_text(s.slip_margin)}, but mu's stated error allows "
+                              f"{small_text(low)} to {small_text(high)} ({need}, {carry}); "
+                              "a finer model decides")
     if s.slip_margin >= 1.0:
-        return (f"{head}{'hold' if sliding else 'holds'} with margin {s.slip_margin:.2g} "
-                f"(needs {s.delta_T_required:.3g} N/m, can carry {s.delta_T_available:.3g} "
-                f"N/m at mu_onset {s.mu_onset:.3g})")
-    return (f"{head}{'slip' if sliding else 'slips'}: needs {s.delta_T_required:.3g} N/m, "
-            f"can carry {s.delta_T_available:.3g} N/m (margin {s.slip_margin:.2g}, mu_onset "
-            f"{s.mu_onset:.3g})")
+        return "holds", (f"{head}{'hold' if sliding else 'holds'} with margin "
+                         f"{s.slip_margin:.2g} ({need}, {carry})")
+    return "slips", (f"{head}{'slip' if sliding else 'slips'}: {need}, can carry "
+                     f"{small_text(s.delta_T_available, '.3g')} N/m (margin "
+                     f"{small_text(s.slip_margin)}, mu_onset {small_text(s.mu_onset, '.3g')})")
+
+
+def verdict(s, case=None) -> str:
+    """The idler's one-line answer for the terminal (:func:`idler_verdict`), indented."""
+    said = idler_verdict(s, case)
+    return "" if said is None else "  " + said[1]
 
 
 def traction_text(s, case) -> str:
@@ -206,7 +249,7 @@ def describe(result) -> str:
         lines.append(f"  model used: {s.model_used} ({judged_text(s)}): {s.why}")
     lines.append(f"  physics: T_eff = {s.T_eff:.4g} N/m, D = {s.bending_stiffness_used:.3g} N m; "
                  "effects: " + (", ".join(s.effects) or "none (the paper's model)"))
-    if s.slip_margin is not None:
+    if s.delta_T_required is not None:
         lines.append(verdict(s, c))
     for w in s.warnings:
         lines.append(f"  warning: {w}")

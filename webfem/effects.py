@@ -122,7 +122,7 @@ class EffectsTable:
             h_c, h_m = (convert(v, ROLES["h_center"], units) for v in (r.h_center, r.h_min))
             lines.append(f"  {r.effect:<24}{h_c:>{w1}.3f}{h_m:>{w2}.3f}"
                          f"{r.mu:>9.4f}{_pct(r.d_h_center):>12}{_pct(r.d_h_min):>10}"
-                         f"{d_mu:>10}" + (f"{r.slip_margin:>13.3g}" if idler else ""))
+                         f"{d_mu:>10}" + (f"{_margin(r.slip_margin):>13}" if idler else ""))
         if small_mu:
             lines.append("  (mu below 1e-3: its change is absolute, not relative)")
         known = {k: v for k, v in (self.errors or {}).items() if v is not None}
@@ -178,3 +178,10 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
               for q in ("h_center", "h_min", "mu")}
     return EffectsTable(model, tuple(rows), missing, asked=asked,
                         why=why if asked != model else None, errors=errors)
+
+
+def _margin(value) -> str:
+    """A slip margin as the table prints it: 3 digits, ``< 0.001`` below (the JSON keeps
+    the number), ``-`` where there is none."""
+    from .describe import small_text
+    return "-" if value is None else small_text(value, ".3g")

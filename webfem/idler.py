@@ -14,19 +14,20 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
-
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .api import solve_along
 from .case import Case
-from .errors import InputError
+from .errors import ConvergenceError, InputError, ValidityWarning
 from .line_speed import at_speed
-from .physics.effects import margin_range, margin_verdict
+from .physics.effects import margin_range, margin_verdict, states_load
 
-__all__ = ["MarginCurve", "margin_curve"]
+__all__ = ["MarginCurve", "margin_curve", "idler_at_web_speed"]
 
 
 @dataclass(frozen=True)
@@ -156,3 +157,48 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
                                        for r in results),
                        models_used=used, margin_low=tuple(lo for lo, _ in ranges),
                        margin_high=tuple(hi for _, hi in ranges), **pick)
+
+
+def idler_at_web_speed(result, model: str = "auto", options=None):
+    """``result`` with the idler keys of an idler at its web speed, where its web slides.
+
+    An idler turns with the web (U_r = U_w) and entrains air at 2 U_w; where the case's
+    speeds differ its film is another, and the traction at the onset of slip read from it
+    is no idler's (the models leave ``mu_onset``, ``delta_T_available`` and ``slip_margin``
+    None there). This solves the case again with ``model`` at U_r = U_w (as costly as the
+    first solve for the FE models) and puts that solve's idler keys into the summary, with
+    ``error_mu_onset`` its stated mu error and ``idler_basis`` naming it. Where that solve
+    finds no answer ``idler_basis`` says so and the keys stay None. Unchanged where nothing
+    slides, no idler load is stated or the web stands still.
+
+    Parameters
+    ----------
+    result : Result
+        A solved case.
+    model, options
+        As for :func:`webfem.solve`: the second solve's model (auto may pick another than
+        the first's; ``idler_basis`` names the one that answered).
+
+    Returns
+    -------
+    Result
+        ``result`` itself, or a copy with the summary's idler keys filled.
+    """
+    from .api import solve
+
+    case, s = result.case, result.summary
+    if case.U_slide == 0.0 or not states_load(case) or case.web.speed <= 0.0:
+        return result
+    speed = f"U_r = U_w = {case.web.speed:.4g} m/s"
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)   # its own case's warnings
+            other = solve(case.updated({"roller.speed": case.web.speed}), model,
+                          options=options).summary
+    except (ConvergenceError, InputError) as err:   # NoAdmissibleSolution among them
+        basis = f"the second {model} solve at {speed} found no answer ({err})"
+        return dataclasses.replace(result, summary=s.replace(idler_basis=basis))
+    basis = f"a second {other.model_used or other.model} solve at {speed}"
+    return dataclasses.replace(result, summary=s.replace(
+        delta_T_available=other.delta_T_available, slip_margin=other.slip_margin,
+        mu_onset=other.mu_onset, error_mu_onset=other.error_mu, idler_basis=basis))

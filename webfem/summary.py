@@ -134,6 +134,12 @@ class Summary(ReadOnlyMapping):
     delta_T_available: float | None = None
     slip_margin: float | None = None
     mu_onset: float | None = None
+    #: Where the web slides (U_s > 0) this solve's film is not an idler's: the idler keys
+    #: above (but ``delta_T_required``) are None unless a second solve at U_r = U_w supplied
+    #: them (:func:`webfem.idler.idler_at_web_speed`); then ``idler_basis`` names that solve
+    #: and ``error_mu_onset`` is its stated error of mu (as ``error_mu``).
+    idler_basis: str | None = None
+    error_mu_onset: float | None = None
     #: Where nothing slides (U_s = 0): the film's own traction at the stated speeds, its
     #: pressure-driven drag -(h/2) dp/dx averaged over the wrap (tiny, of either sign) and
     #: the belt formula's delta_T for it [N/m]; None where something slides (then ``mu`` and

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..describe import SMALL, small_text
 from ..idler import margin_curve
 from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, add_case_arguments, add_units_argument, case_from,
@@ -86,8 +87,11 @@ def _table(curve, units: str) -> str:
                    convert(a, "tension", units))
         # SI as it always printed; ft/min and m/min run to 4 digits, pli to 0.0001
         su, st = (3, 3) if units == "si" else (4, 3 if units == "metric" else 4)
-        span = f"{lo:.3g} - {hi:.3g}"
-        lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {m:9.3g} {span:>19}  "
+        # a margin of 1e-112 is no figure to read: "< 0.001" (the JSON and CSV keep it)
+        span = (f"< {SMALL:g}" if 0.0 < hi < SMALL else
+                f"{small_text(lo, '.3g')} - {small_text(hi, '.3g')}")
+        lines.append((f"  {u:10.{su}g} {r:10.{st}f} {a:10.{st}f} {small_text(m, '.3g'):>9} "
+                      f"{span:>19}  "
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]

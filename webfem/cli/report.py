@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 from ..api import solve
+from ..idler import idler_at_web_speed
 from .common import (HELP_FORMATTER, Ticker, add_case_arguments, add_quiet_argument,
                      add_units_argument, case_from, model_options, options_epilog,
                      output_folder)
@@ -37,6 +38,8 @@ def run(args) -> int:
     # shared as if it were an answer
     with Ticker(f"solving with {args.model}", args.quiet):
         result = solve(case, model=args.model, options=options)
+        # a sliding web's film is not an idler's: the check needs the idler's own
+        result = idler_at_web_speed(result, args.model, options)
     used = result.summary.model_used or args.model
     asked = (f"asked for by name (--model {args.model})" if args.model_given
              else f"the default of webfem report (--model {args.model})")
@@ -47,7 +50,8 @@ def run(args) -> int:
                               + (args.model if used == args.model else f"{args.model}: {used}")
                               + ")", units=args.units, asked=asked)
     print(f"wrote {path}")
-    if result.summary.warnings:
-        print(f"webfem: {len(result.summary.warnings)} warning(s), listed in the page",
-              file=sys.stderr)
+    from ..io.report import page_warnings
+    said = page_warnings(result)
+    if said:
+        print(f"webfem: {len(said)} warning(s), listed in the page", file=sys.stderr)
     return 0

@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 from ..api import solve
+from ..idler import idler_at_web_speed
 from ..errors import ConvergenceError, InputError
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Ticker, add_case_arguments,
                      add_quiet_argument, add_units_argument, case_from, error_line,
@@ -52,6 +53,8 @@ def run(args) -> int:
     try:
         with Ticker(f"solving with {args.model}", args.quiet):
             result = solve(case, model=args.model, options=options)
+            # a sliding web's film is not an idler's: the check needs the idler's own
+            result = idler_at_web_speed(result, args.model, options)
     except ConvergenceError as err:
         error_line(err)
         if err.result is not None:

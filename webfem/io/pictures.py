@@ -5,7 +5,10 @@ For a 2-D result (fe2d, or auto answering with it) the picture has three aligned
 a. the film pressure p - p_a over the arc x and the full width z, on a diverging colour map
    centred on 0 (red above ambient, blue below); a half-width solve is mirrored;
 b. the gap h along the centre line against the regime levels h_c and 3 sigma;
-c. the local friction coefficient mu(x) in the wrap, over bands showing the local regime.
+c. the local friction coefficient mu(x) in the wrap, over bands showing the local regime,
+   and the headline mu as a dashed line: the wrap average where the web slides; where
+   nothing slides (an idler) the traction available at the onset of slip, mu_onset, which
+   the local friction at the stated speeds (the film's drag, near 0) does not average to.
 
 Results without a film (closed form, fe1d) get panels b and c only. The wrap edges
 x = -+RB/2 are marked in every panel; air is dragged towards +x. Coordinates are drawn in
@@ -217,14 +220,24 @@ def film_figure(result, path, title: str | None = None, units: str = "si") -> Pa
     wrap = (np.asarray(f["in_wrap"]) > 0) if "in_wrap" in f else np.abs(x) <= half * (1 + 1e-9)
     if "regime" in f:
         _regime_bands(ax, x, f["regime"], wrap, to_x)
-    if "mu" in f:
-        ax.plot(x[wrap] * to_x, np.asarray(f["mu"], float)[wrap], color="k", lw=1.3,
-                label="local mu(x)")
-    ax.axhline(s.mu, color="tab:red", lw=0.9, ls=(0, (5, 2)))
-    ax.annotate(f"wrap average mu = {s.mu:.3f}", (-half * to_x, s.mu), xytext=(4, 2),
-                textcoords="offset points", ha="left", va="bottom", fontsize=7,
-                color="tab:red")
-    ax.set_ylim(0.0, None)
+    local = np.asarray(f["mu"], float)[wrap] if "mu" in f else np.zeros(0)
+    # where nothing slides (an idler, U_s = 0) the headline mu is the traction available at
+    # the onset of slip (mu_cc x contact share), not the average of the local friction at
+    # the stated speeds, which is the film's drag near 0: the line says which it is
+    idle = s.get("mu_film") is not None
+    said = (f"mu_onset = {s.mu:.3f}: traction available at the onset of slip "
+            "(mu_cc x contact share)" if idle else f"wrap average mu = {s.mu:.3f}")
+    curve = ("local friction at the stated speeds (nothing slides: the film's drag, wrap "
+             f"average mu_film = {s.mu_film:.2g})" if idle else "local friction mu(x)")
+    if local.size:
+        ax.plot(x[wrap] * to_x, local, color="k", lw=1.3, label=curve)
+    ax.axhline(s.mu, color="tab:red", lw=0.9, ls=(0, (5, 2)), label=said)
+    # the labels go in a legend in head room above every line: none crosses a curve or
+    # the panel's title
+    top = max([s.mu, *(local[np.isfinite(local)] if local.size else [])])
+    low = min([0.0, *(local[np.isfinite(local)] if local.size else [])])
+    ax.set_ylim(low, low + 1.6 * (top - low) if top > low else 1.0)
+    ax.legend(loc="upper left", fontsize=7, framealpha=0.9, borderaxespad=0.3)
     ax.set_ylabel("friction mu [-]")
     ax.set_xlabel(f"x along the arc from the wrap centre [{x_unit}]")
     # the regime is the paper's label by the gap; the contact model's load share is another

@@ -1,6 +1,9 @@
 """A report to share: one self-contained HTML page of a solved case.
 
-The page holds, in this order, sections with these ``id`` attributes: ``inputs`` (every case
+Where the case states an idler load the page opens with the idler's verdict (``id="idler"``:
+holds, unsure, slips or not judged, with the traction needed and available: the sentence
+``webfem solve`` prints, :func:`webfem.describe.idler_verdict`), repeated among the warnings
+unless it holds. Then it holds, in this order, sections with these ``id`` attributes: ``inputs`` (every case
 key with its value, unit and meaning), ``model`` (which model answered, why, the effects
 included and the options), ``summary`` (the numbers with units), ``pictures`` (the film
 picture of :mod:`webfem.io.pictures` and any charts given, embedded as base64 PNG),
@@ -35,11 +38,11 @@ import tempfile
 from html import escape
 from pathlib import Path
 
-from ..describe import contact_gap_text, error_text, judged_text, resting_text
+from ..describe import contact_gap_text, error_text, idler_verdict, judged_text, resting_text
 from ..files import write_text
 from ..units import ROLES, convert, unit_label
 
-__all__ = ["write_report", "report_html", "SECTIONS", "SUMMARY_UNITS"]
+__all__ = ["write_report", "report_html", "page_warnings", "SECTIONS", "SUMMARY_UNITS"]
 
 #: The sections of the page: id -> heading.
 SECTIONS = {"inputs": "Inputs", "model": "Model", "summary": "Summary",
@@ -74,6 +77,8 @@ SUMMARY_UNITS = {
     "delta_T_required": ("N/m", "idler: tension difference needed"),
     "delta_T_available": ("N/m", "idler: tension difference available"),
     "mu_onset": ("-", "traction at the onset of slip: mu_cc x contact share"),
+    "idler_basis": ("", "idler: the web slides here, so the idler keys come from this solve "
+                        "of the idler's own film (U_r = U_w)"),
 }
 
 _STYLE = """
@@ -242,6 +247,28 @@ def _computed(result, version: str) -> str:
     return _table(("", "value", "unit", "note"), rows)
 
 
+def page_warnings(result) -> list[str]:
+    """The warnings the page lists: the solve's, and the idler's verdict where it slips, is
+    unsure or cannot be judged (:func:`webfem.describe.idler_verdict`, the sentence
+    ``webfem solve`` prints)."""
+    said = idler_verdict(result.summary, result.case)
+    idler = [said[1][0].upper() + said[1][1:]] if said and said[0] != "holds" else []
+    return idler + list(result.summary.warnings)
+
+
+def _idler_headline(result) -> str:
+    """The idler's verdict as the page's first line ("" without an idler load): green where
+    it holds, a warning box otherwise."""
+    said = idler_verdict(result.summary, result.case)
+    if said is None:
+        return ""
+    word, text = said
+    shown = (f"<b>Idler slip check: {escape(word.upper())}.</b> "
+             f"{escape(text[0].upper() + text[1:])}.")
+    return (f'<p class="ok" id="idler">{shown}</p>' if word == "holds" else
+            f'<div class="warn" id="idler">{shown}</div>')
+
+
 def report_html(result, *, title: str = "", pictures=(), version: str = "",
                 units: str = "si", asked: str | None = None) -> str:
     """The page as text. ``pictures``: ``(png path, caption)`` pairs, embedded in order;
@@ -254,7 +281,8 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
     # a negative gap is an answer, not a warning, but the page must say why it is negative
     # wherever a reader meets it: the heading, the summary table and this section
     note = f"<p>Note: {escape(rests[0].upper() + rests[1:])}.</p>" if rests else ""
-    warn = note + ("".join(f'<div class="warn">{escape(w)}</div>' for w in s.warnings)
+    warn = note + ("".join(f'<div class="warn">{escape(w)}</div>'
+                           for w in page_warnings(result))
                    or '<p class="ok">No warnings.</p>')
     figures = "\n".join(_picture(p, c) for p, c in pictures) or "<p>No pictures.</p>"
     body = {"inputs": _inputs(result.case, units), "model": _model(result, asked),
@@ -275,7 +303,8 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
     return (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
             f'<meta name="viewport" content="width=device-width, initial-scale=1">'
             f"<title>{escape(title)}</title><style>{_STYLE}</style></head>\n<body>"
-            f"<h1>{escape(title)}</h1>{head}{nav}\n{sections}\n</body></html>\n")
+            f"<h1>{escape(title)}</h1>{_idler_headline(result)}{head}{nav}\n{sections}\n"
+            "</body></html>\n")
 
 
 def write_report(result, folder, *, title: str = "", charts=(), name: str = "report.html",

@@ -151,7 +151,11 @@ def traction_summary(case, mu: float, contact_share: float) -> dict:
     -------
     dict
         Where something slides (U_s = |U_r - U_w| > 0): ``mu`` as given, ``delta_T`` =
-        T_eff (exp(mu B) - 1), ``mu_film`` and ``delta_T_film`` None. Where nothing slides
+        T_eff (exp(mu B) - 1), ``mu_film`` and ``delta_T_film`` None; of the idler keys only
+        ``delta_T_required`` (the roller's load): this film is not an idler's (an idler
+        turns with the web, U_r = U_w, and entrains other air), so ``mu_onset``,
+        ``delta_T_available`` and ``slip_margin`` are None
+        (:func:`webfem.idler.idler_at_web_speed` solves the idler's own film). Where nothing slides
         (U_s = 0: an idler turning with the web) the traction at the stated speeds is only
         the film's pressure-driven drag, tiny and of either sign; a belt-formula measurement
         (pull the web until the roller slips) reads the traction available at the onset of
@@ -176,6 +180,7 @@ def traction_summary(case, mu: float, contact_share: float) -> dict:
     idler = idler_check(case, mu_onset)
     delta_T = float(delta_T_from_mu(mu, T, B))
     if case.U_slide != 0.0:
+        idler.update(dict.fromkeys(_FILM_IDLER_KEYS))
         return dict(mu=mu, delta_T=delta_T, mu_film=None, delta_T_film=None, **idler)
     available = T * math.expm1(mu_onset * B)
     idler.update(mu_onset=mu_onset, delta_T_available=available)
@@ -183,6 +188,10 @@ def traction_summary(case, mu: float, contact_share: float) -> dict:
 
 
 _IDLER_KEYS = ("delta_T_required", "delta_T_available", "slip_margin", "mu_onset")
+#: The idler keys read from the film: where the web slides (U_s > 0) this film is not an
+#: idler's (U_r = U_w entrains other air), so they are None; delta_T_required is the
+#: roller's load and stands (:func:`webfem.idler.idler_at_web_speed` solves the idler's film).
+_FILM_IDLER_KEYS = ("delta_T_available", "slip_margin", "mu_onset")
 
 
 def traction_summaries(cases, mu, contact_share) -> list[dict]:
@@ -215,6 +224,7 @@ def traction_summaries(cases, mu, contact_share) -> list[dict]:
         idler = (dict(delta_T_required=req, delta_T_available=avail, slip_margin=marg,
                       mu_onset=onset) if load else dict.fromkeys(_IDLER_KEYS))
         if us != 0.0:
+            idler.update(dict.fromkeys(_FILM_IDLER_KEYS))
             out.append(dict(mu=m, delta_T=dT, mu_film=None, delta_T_film=None, **idler))
         else:
             idler.update(mu_onset=onset, delta_T_available=avail)
