@@ -571,6 +571,14 @@ def test_the_read_out_is_the_fit_variables_inverse():
                                                                   H_c[:, 0]), S[:, 0], H_c[:, 0])
     np.testing.assert_allclose(pr["H_center"], centre, rtol=1e-12,
                                atol=1e-12 * np.abs(centre).max())
+    # the contact share is fitted in its arcsine transform: predict's share is sin^2 of its
+    # column (clipped to [0, pi/2])
+    assert fit["share_variable"] == fitted.SHARE_VARIABLE
+    np.testing.assert_allclose(pr["share"], np.sin(np.clip(Y[:, -1], 0, np.pi / 2)) ** 2,
+                               rtol=1e-12, atol=1e-15)
+    s = np.array([-0.1, 0.0, 1e-4, 0.2, 0.5, 0.9, 1.0, 1.2])
+    np.testing.assert_allclose(fg.fit_to_share(fg.share_to_fit(s)), np.clip(s, 0, 1),
+                               rtol=1e-12, atol=1e-16)
 
 
 @pytest.mark.parametrize("kind", ["gaussian", "cauchy"])

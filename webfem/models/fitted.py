@@ -5,9 +5,11 @@ by ``webfem fit build``) gives, from the eight groups of a smooth-roller case
 (:mod:`webfem.models.fit_groups`), the scaled gap H and film pressure P at fixed positions
 along the wrap and the smallest gap and where; the centre and smallest gaps and the contact
 share are also fitted on their own, which the summary reports (measured more accurate than
-the profile's). The friction, the regimes, mu and delta_T are computed from the profile
-with the physics functions the FE models use (:func:`webfem.physics.friction.friction_for`,
-the contact law), so the friction constants and the speeds add no dimensions to the fit.
+the profile's; the share in arcsin(sqrt(share)),
+:func:`webfem.models.fit_groups.share_to_fit`). The friction, the regimes, mu and delta_T
+are computed from the profile with the physics functions the FE models use
+(:func:`webfem.physics.friction.friction_for`, the contact law), so the friction constants
+and the speeds add no dimensions to the fit.
 
 Its domain is the box of groups the campaign sampled and the default full physics on a
 smooth roller; outside it the model refuses (:class:`OutsideDomain`, naming the group, its
@@ -57,6 +59,9 @@ __all__ = ["solve", "solve_case", "solve_many", "predict", "read_profile", "read
 NAME = "fitted"
 COEFFICIENTS = Path(__file__).with_name("fitted_coefficients.npz")
 QUANTITIES = ("h_center", "h_min", "mu", "contact_share")
+#: The name a coefficients file gives the contact share's fitted variable
+#: (:func:`webfem.models.fit_groups.share_to_fit`); a file without it fitted the share itself.
+SHARE_VARIABLE = "arcsin-sqrt"
 
 
 class OutsideDomain(NoAdmissibleSolution):
@@ -85,6 +90,9 @@ def coefficients(path: str | None = None) -> dict:
             "hi": d["hi"], "edges": d["region_edges"], "errors": d["region_errors"],
             # a file from before the Dn bands states one error per gap region
             "dn_edges": d.get("dn_edges", np.empty(0)),
+            # the share's variable (fit_groups.share_to_fit) where the file names it, else
+            # the share itself, clipped (the files before it)
+            "share_variable": str(d.get("share_variable", "share")),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
             "scalar_names": fit["scalar_names"]}
 
@@ -236,7 +244,10 @@ def _predict(G: np.ndarray, fit: dict, stack: Stack | None,
         # capped by the profile's smallest node, as the profile's own minimum is
         np.minimum(fg.asinh_to_gap(own["h_min"] + np.arcsinh(E_min), S, H_c), H_low,
                    out=out["H_min"])
-        np.clip(own["contact_share"], 0.0, 1.0, out=out["share"])
+        if fit.get("share_variable") == SHARE_VARIABLE:
+            fg.fit_to_share(own["contact_share"], out=out["share"])
+        else:      # a file from before the transform: the share itself
+            np.clip(own["contact_share"], 0.0, 1.0, out=out["share"])
     else:
         np.minimum(H_c + S * ((E_min + fg.FLOOR_SIGMAS) * np.exp(Y[:, 2 * n])
                               - fg.FLOOR_SIGMAS), H_low, out=out["H_min"])

@@ -111,7 +111,8 @@ def targets(rows) -> np.ndarray:
 def scalar_targets(rows) -> np.ndarray:
     """The :data:`SCALARS` of campaign rows as fitted: the centre and smallest gaps in
     :func:`~webfem.models.fit_groups.gap_to_asinh` less their baseline's, the contact share
-    as it is (a share of the load, a function of the groups alone)."""
+    (a share of the load, a function of the groups alone) in its arcsine transform
+    (:func:`~webfem.models.fit_groups.share_to_fit`)."""
     G = np.array([[r[f"g_{g}"] for g in fg.GROUPS] for r in rows], float)
     base, base_min = fg.baseline(G)
     S = G[:, fg.GROUPS.index("S")]
@@ -122,7 +123,7 @@ def scalar_targets(rows) -> np.ndarray:
     return np.column_stack([
         fg.gap_to_asinh(centre, S, H_c) - fg.gap_to_asinh(base[:, len(fg.NODES) // 2], S, H_c),
         fg.gap_to_asinh(low, S, H_c) - fg.gap_to_asinh(base_min, S, H_c),
-        [r["contact_share"] for r in rows]])
+        fg.share_to_fit([r["contact_share"] for r in rows])])
 
 
 def _loo(x, y, log_scales, log_nugget, kind=None):
@@ -344,7 +345,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
     from .. import __version__
     from ..case import Case
     from ..errors import InputError
-    from ..models.fitted import QUANTITIES
+    from ..models.fitted import QUANTITIES, SHARE_VARIABLE
     from ..sweeps.table import read_table, typed
     # in design order: the fit (the draw of HYPER_POINTS, the kernels' centres) must not
     # depend on the order rows finished in, which an interrupted parallel run leaves
@@ -402,7 +403,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
     kept = " / ".join(str(len(k.centres)) for k in (kernel, *scalars))
     info += f"; kernels of {kept} centres; {datetime.date.today().isoformat()}"
     fit = {"kernel": kernel, "lo": lo, "hi": hi, "edges": REGION_EDGES, "dn_edges": DN_EDGES,
-           "scalars": scalars,
+           "scalars": scalars, "share_variable": SHARE_VARIABLE,
            "scalar_names": tuple(SCALARS[c] for cols in SCALAR_KERNELS for c in cols)}
     errs = holdout_errors(hold, fit)
     table = region_errors(errs)
@@ -414,6 +415,7 @@ def build(campaign_csv, out_npz, *, restarts: int = 2, holdout_csv=None,
     np.savez_compressed(out_npz, **kernel.arrays("k"), **extra,
                         scalar_names=np.array(fit["scalar_names"]), lo=lo, hi=hi,
                         region_edges=REGION_EDGES, dn_edges=DN_EDGES, region_errors=table,
+                        share_variable=np.array(SHARE_VARIABLE),
                         physics=np.array(f"webfem {__version__}"), info=np.array(info),
                         holdout_groups=np.array([[r[f"g_{g}"] for g in fg.GROUPS]
                                                  for r in hold]),
