@@ -58,14 +58,29 @@ def grooved() -> Case:
     return GROOVED
 
 
-def inspect_before_save(monkeypatch, module, inspect) -> None:
-    """Have ``module.save_figure`` call ``inspect(fig, renderer)`` on the drawn figure
-    before it saves (and closes) it: a chart test measures its layout there."""
-    real = module.save_figure
+def inspect_before_save(monkeypatch, module, inspect, name: str = "save_figure") -> None:
+    """Have ``module``'s saving function ``name`` call ``inspect(fig, renderer)`` on the
+    drawn figure before it saves (and closes) it: a chart test measures its layout there."""
+    real = getattr(module, name)
 
     def keep(fig, path):
         fig.canvas.draw()
         inspect(fig, fig.canvas.get_renderer())
         return real(fig, path)
 
-    monkeypatch.setattr(module, "save_figure", keep)
+    monkeypatch.setattr(module, name, keep)
+
+
+class FakeResult:
+    """A result the loss scan reads, its mu (and any other summary value) given: its case,
+    and its summary by key."""
+
+    def __init__(self, case, mu, **values):
+        self.case = case
+        self.summary = {"mu": mu, "model": "fake", "model_used": None, **values}
+
+    def __getitem__(self, key):
+        return self.summary[key]
+
+    def slim(self):
+        return self

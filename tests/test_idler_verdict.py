@@ -20,7 +20,7 @@ import pytest
 import webfem
 from webfem.cli import main
 
-from conftest import IDLER
+from conftest import IDLER, inspect_before_save
 
 pytestmark = pytest.mark.filterwarnings("ignore::webfem.errors.ValidityWarning")
 
@@ -146,14 +146,7 @@ def test_the_friction_panel_names_its_dashed_line_clear_of_curve_and_title(monke
               for y in np.atleast_1d(line.get_ydata())]
         seen["top_line"] = ax.transData.transform((0.0, max(ys)))[1]
 
-    real = pictures._save
-
-    def keep(fig, path):
-        fig.canvas.draw()
-        measure(fig, fig.canvas.get_renderer())
-        return real(fig, path)
-
-    monkeypatch.setattr(pictures, "_save", keep)
+    inspect_before_save(monkeypatch, pictures, measure, "_save")
     r = webfem.solve(webfem.load_case("press_idler").updated(
         {"roller.speed": 5.0, "web.speed": 5.0}), model="closed-form")
     pictures.film_figure(r, tmp_path / "f.png")

@@ -1,23 +1,16 @@
 """The traction-loss speed states its error: the speeds between which mu's stated error
 band reaches mu_min (a new-user trial found the answer given without one)."""
 
-from types import SimpleNamespace as R
-
 import pytest
 
 from webfem import Case
 from webfem.traction import speed_interval, traction_loss_speed
 
-
-class Solved(R):
-    """A result as the loss scan reads one: its case, and its summary by key."""
-
-    def __getitem__(self, key):
-        return {"mu": self.mu, "error_mu": self.error_mu}[key]
+from conftest import FakeResult
 
 
 def results(points, error=0.05):
-    return [Solved(case=Case().updated({"roller.speed": u}), mu=m, error_mu=error)
+    return [FakeResult(Case().updated({"roller.speed": u}), m, error_mu=error)
             for u, m in points]
 
 

@@ -15,6 +15,8 @@ from webfem.errors import ConvergenceError, NoAdmissibleSolution
 from webfem.line_speed import top_speed
 from webfem.traction import traction_loss_speed
 
+from conftest import FakeResult
+
 #: A light, rough foil at a low tension: as the line speeds up the web's inertia leaves
 #: less of its tension (T_eff) to press it down, and the closed form's contact gap h_c
 #: outgrows R/100 at 5.5 m/s, well below the thin-film bound (7.3 m/s).
@@ -71,15 +73,6 @@ def test_the_line_limit_names_its_quantity():
     assert "the last possible speed" in out.message
 
 
-class _Fake:
-    def __init__(self, case, mu):
-        self.case, self.summary = case, {"mu": mu, "model": "fake", "model_used": None}
-
-    def __getitem__(self, key):
-        return self.summary[key]
-
-    def slim(self):
-        return self
 
 
 @pytest.fixture
@@ -95,7 +88,7 @@ def refusing(monkeypatch):
         for c in cases:
             if c.roller.speed > 20.0:
                 raise state["error"]
-            yield _Fake(c, state["mu"](c.roller.speed))
+            yield FakeResult(c, state["mu"](c.roller.speed))
     monkeypatch.setattr(ls, "solve_along", along)
     return state
 

@@ -15,6 +15,8 @@ from webfem.keys import key_meta
 from webfem.traction import (CHART_PARAMETERS, TractionLoss, chart_parameters, mu_curve,
                              traction_loss_speed, traction_loss_table)
 
+from conftest import FakeResult
+
 
 def test_traction_loss_speed_is_a_crossing():
     out = traction_loss_speed(Case(), 0.1, "closed-form")
@@ -434,17 +436,6 @@ def test_the_scan_stops_at_its_first_crossing():
     assert never.scanned == (0.5, 100.0) and never.evaluations == 24
 
 
-class _Fake:
-    """A result whose mu is a given function of the roller speed."""
-
-    def __init__(self, case, mu):
-        self.case, self.summary = case, {"mu": mu, "model": "fake", "model_used": None}
-
-    def __getitem__(self, key):
-        return self.summary[key]
-
-    def slim(self):
-        return self
 
 
 def _two_humps(u):
@@ -472,7 +463,7 @@ def two_humps(monkeypatch):
             if c.roller.speed > FAIL_ABOVE["speed"]:
                 raise webfem.errors.ConvergenceError("no answer up there")
             SOLVED_HERE.append(c.roller.speed)
-            yield _Fake(c, _two_humps(c.roller.speed))
+            yield FakeResult(c, _two_humps(c.roller.speed))
     monkeypatch.setattr(ls, "solve_along", along)
     monkeypatch.setattr(ls, "LOW_SHARE", 0.375)
     monkeypatch.setitem(FAIL_ABOVE, "speed", 250.0)
