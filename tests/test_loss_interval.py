@@ -47,3 +47,21 @@ def test_the_closed_form_says_it_states_no_speed_error_where_its_band_stays_open
     assert "no stated error" in out.message
     assert f"anywhere from {low:.4g} m/s to above the last speed solved" in out.message
     assert out.to_dict()["speed_interval"] == [low, None]
+
+
+def test_the_speed_found_lies_inside_its_stated_interval():
+    """Brent stops within 1e-3 of its bracket, 20 times wider than fe2d's band on the base
+    case (the review found 23.37915 m/s reported with an interval of 23.38308..23.38421):
+    the speed is mu's crossing interpolated between the root find's nearest solves."""
+    from webfem.traction import interpolated_crossing
+
+    cache = {u: FakeResult(Case().updated({"roller.speed": u}), 0.3 - 0.01 * u,
+                           error_mu=1e-4) for u in (19.0, 20.0, 20.02, 25.0)}
+    speed = interpolated_crossing(cache, 0.1, 20.005)   # Brent's answer, 0.005 off
+    assert speed == pytest.approx(20.0)
+    low, high = speed_interval(list(cache.values()), 0.1, 19.0)
+    assert low <= speed <= high
+    full = traction_loss_speed(Case(), 0.1, "closed-form", full_scan=True)
+    low, high = full.speed_interval
+    assert low <= full.speed <= high and full.error_speed == pytest.approx(
+        max(full.speed - low, high - full.speed) / full.speed)

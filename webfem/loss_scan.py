@@ -50,11 +50,11 @@ class Refused:
     speed: float
     reason: str
 
-    def error(self, model: str) -> NoAdmissibleSolution:
-        """The error where no speed below was solved: nothing to answer."""
+    def error(self, model: str, where: str = "the scan's first speed") -> NoAdmissibleSolution:
+        """The error where nothing can be answered: no speed below was solved (``where``
+        says which speed it was: the scan's first, or one inside the root find's bracket)."""
         return NoAdmissibleSolution(f"traction-loss search: the {model} model has no answer "
-                                    f"at U_r = {self.speed:.4g} m/s, the scan's first speed: "
-                                    f"{self.reason}")
+                                    f"at U_r = {self.speed:.4g} m/s, {where}: {self.reason}")
 
 
 def crossing(mu, mu_min: float) -> int | None:
@@ -114,7 +114,8 @@ def refine(case: Case, model: str, opts: Options, a: float, b: float, at_a, at_b
             nearest = cache[min(cache, key=lambda v: abs(v - u))]
             out, err = _walk(case, [u], model, opts, initial=nearest)
             if err is not None:
-                raise err.error(model) if isinstance(err, Refused) else err
+                raise (err.error(model, f"inside the bracket {a:.4g}..{b:.4g} m/s of the "
+                                        "crossing") if isinstance(err, Refused) else err)
             cache[u] = out[0]
         return cache[u]["mu"] - mu_min
 
