@@ -329,6 +329,7 @@ def test_the_sag_rule_is_continuous_where_the_web_lands():
     assert sag_warning(wide, 20e-6) == ""
     for h, said in ((-1e-8, "resting on its asperities"), (1e-8, "above the smallest land gap")):
         assert "the roughness sigma" in sag_warning(wide, h) and said in sag_warning(wide, h)
+    assert "the roughness sigma" in sag_warning(wide, float("nan"))   # no gap: sigma judges
 
 
 

@@ -97,3 +97,13 @@ def test_command_line_sweep_parameters_are_checked(tmp_path, capsys, args, words
 def test_keys_lists_the_line_speed(capsys):
     assert main(["keys"]) == 0
     assert '"line.speed" [m/s]' in capsys.readouterr().out
+
+
+def test_a_range_on_the_command_line_over_a_values_table_takes_the_default_count(tmp_path):
+    """--start/--stop over a [sweep] with a values list: the list's length is no count for
+    the range (values = [10.0] made --start 5 --stop 15 one point, --stop dropped); the
+    table's num where it has one, else the default 40."""
+    path = tmp_path / "one.toml"
+    path.write_text('[sweep]\nparameter = "roller.speed"\nvalues = [10.0]\n')
+    spec = load_sweep(path, start="5", stop="15")
+    assert len(spec.values) == 40 and spec.values[0] == 5.0 and spec.values[-1] == 15.0

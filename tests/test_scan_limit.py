@@ -31,6 +31,8 @@ def test_a_scan_refused_above_some_speed_answers_the_speeds_below():
     assert out.scanned[0] == 0.5 and 4.0 < out.scanned[1] < top_speed(case, 100.0)[0]
     assert out.scan_limit.startswith("at U_r = 5.788 m/s, no admissible closed-form answer")
     assert "h_c" in out.scan_limit and "T_eff" in out.scan_limit
+    # the two lengths compared are printed until they differ (0.000375 'more than' 0.000375)
+    assert "h_c = 0.0003752 m" in out.scan_limit and "R/100 = 0.000375 m" in out.scan_limit
     assert f"mu stays above 0.01 up to {out.scanned[1]:.4g} m/s" in out.message
     assert "the last speed answered" in out.message
     # mu rises all the way (peak 0.058 at the last speed answered): below 0.1 up to there

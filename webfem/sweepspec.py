@@ -329,8 +329,9 @@ def _command_line(spec: Mapping[str, Any], where: str, parameter: str | None,
             raise InputError("--start and --stop go together: give both ends of the range")
         start, stop = (_finite(name, _number(v), "", swept)
                        for name, v in zip(("--start", "--stop"), span))
-        num = spec.get("num", len(spec["values"]) if isinstance(spec.get("values"), list)
-                       else _DEFAULT_NUM)
+        # the table's num where it has one; a values list's length is no count for a
+        # range (values = [10.0] would make --start 5 --stop 15 one point)
+        num = spec.get("num", _DEFAULT_NUM)
         spacing = spec.get("spacing", "linear") if "values" not in spec else "linear"
         spec = {"parameter": swept, "start": start, "stop": stop, "num": num,
                 "spacing": spacing}

@@ -9,6 +9,11 @@ Examples
 >>> c = b.after(a, "from the safe start")
 >>> c.converged, c.iterations, len(c.history), c.reason
 (True, 31, 4, 'residual below tolerance (from the safe start)')
+
+The notes stay apart from a reason that has parentheses of its own:
+
+>>> SolveInfo(reason="at its rounding floor 8e-4 (eps |J| |u|)").noted("after continuation").notes
+('after continuation',)
 """
 
 from __future__ import annotations
@@ -39,6 +44,9 @@ class SolveInfo:
     #: the last solve's bounds of its algebraic error per quantity read, where Newton
     #: stopped on them (:mod:`webfem.models.algebraic`); None: solved to the tolerance
     algebraic: dict | None = None
+    #: the notes :meth:`after` and :meth:`noted` appended to ``reason``, kept apart: a
+    #: solver's own reason may hold parentheses, so the notes cannot be split off the text
+    notes: tuple = ()
 
     @classmethod
     def of(cls, out, steps=(1.0,)) -> "SolveInfo":
@@ -55,8 +63,10 @@ class SolveInfo:
         reason = f"{self.reason} ({note})" if note else self.reason
         return dataclasses.replace(self, iterations=before.iterations + self.iterations,
                                    history=list(before.history) + list(self.history),
-                                   reason=reason)
+                                   reason=reason,
+                                   notes=tuple(self.notes) + ((note,) if note else ()))
 
     def noted(self, note: str) -> "SolveInfo":
         """A copy with ``note`` appended to the reason."""
-        return dataclasses.replace(self, reason=f"{self.reason} ({note})")
+        return dataclasses.replace(self, reason=f"{self.reason} ({note})",
+                                   notes=tuple(self.notes) + (note,))

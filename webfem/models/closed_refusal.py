@@ -93,8 +93,12 @@ def no_answer_reason(code: int, case: Case, s: dict) -> str:
             load = ("T/R" if case.web_inertia <= 0.0 else
                     f"T_eff/R (T_eff = {case.tension_eff:.3g} N/m after the moving web's "
                     "inertia)")
-            return (f"the contact gap h_c = {s['h_c']:.3g} m, where the asperities alone "
-                    f"carry {load}, is more than R/100 = {limit:.3g} m (roller.radius = {R:g} "
+            # as many digits as it takes for the two to differ (0.000375 against 0.000375)
+            digits = next((d for d in range(3, 10)
+                           if f"{s['h_c']:.{d}g}" != f"{limit:.{d}g}"), 10)
+            return (f"the contact gap h_c = {s['h_c']:.{digits}g} m, where the asperities "
+                    f"alone carry {load}, is more than R/100 = {limit:.{digits}g} m "
+                    f"(roller.radius = {R:g} "
                     f"m; valid: h_c < R/100): the roughness sigma = {case.sigma:.3g} m "
                     f"({keys}) is far too coarse for a thin film on this roller; lower it")
         return (f"Eq. 21's inlet gap h_inlet = {s['h_inlet']:.3g} m is more than R/100 = "

@@ -246,7 +246,7 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
         if finer is not None:
             rounds = mesh_error.rounds
             # the start's notes (a cold start after a failed continued one) stay said
-            noted = info.reason.partition(" (")[2]
+            noted = ") (".join(info.notes)
             # the answer is the finer mesh's, solved to the tolerance (the earlier one's
             # bounds, if any, stay added to the stated errors: mesh_error.algebraic)
             info = SolveInfo(**{**info.__dict__, "residual": finer.residual,
@@ -256,7 +256,7 @@ def solve_fe(disc: Discretisation, case: Case, options, initial=None,
                                           f"asked for, " + (mesh_error.refined or
                                           f"{rounds} bisection{'s' if rounds > 1 else ''} "
                                           "of the cells along x, across the width or both")
-                                          + ")" + (f" ({noted}" if noted else "")})
+                                          + ")" + (f" ({noted})" if noted else "")})
     result = build_result(disc, case, problem, u, prm, info, time.perf_counter() - t0,
                           options, start, mesh_error)
     crushed = None if result.summary.converged else through_thickness(case, prm)

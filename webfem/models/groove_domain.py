@@ -21,6 +21,7 @@ change from the cell's answer it measured.
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from typing import Callable
 
@@ -183,7 +184,8 @@ def sag_warning(case: Case, h_min: float) -> str:
     1.1 um into 2.5 mm grooves, h_min -0.03 um, sigma 4 um, is warned of)."""
     w, g = case.web, case.roller.groove_width
     sag = web_sag(case.p_bar, g, w.modulus_md, w.thickness)
-    scale = max(h_min, case.sigma)
+    # a gap that is not a number (no answer) is judged against sigma alone
+    scale = max(h_min, case.sigma) if math.isfinite(h_min) else case.sigma
     if not (scale > 0.0) or sag <= SAG_SHARE * scale:
         return ""
     D = w.modulus_md * w.thickness ** 3 / (12.0 * (1.0 - POISSON ** 2))
