@@ -219,7 +219,7 @@ def describe(result) -> str:
         regime_text(s, c),
         f"  mu = {s.mu:.4f}, tension increase before slip delta_T = {s.delta_T:.3f} N/m"
         + traction_text(s, c),
-        *([above_mu_cc_text(s, c)] if above_mu_cc_text(s, c) else []),
+        *([above] if (above := above_mu_cc_text(s, c)) else []),
         *([f"  the film's own drag at these speeds (its pressure-driven shear): mu_film = "
            f"{s.mu_film:.4f}, delta_T_film = {s.delta_T_film:.3f} N/m"]
           if s.mu_film is not None else []),

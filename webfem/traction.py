@@ -271,11 +271,18 @@ def traction_loss_speed(case: Case, mu_min: float, model: str = "auto",
     found.update(speed=speed, bracket=(a, b), model_used=_used(at), models_used=tuple(used))
     low, high = speed_interval(list(results) + list(cache.values()), mu_min,
                                float(speeds[i_peak]))
-    found.update(speed_interval=(low, high), error_speed=(
-        max(abs(speed - low), abs(high - speed)) / speed
-        if low is not None and high is not None else None))
+    error = interval_error(low, high, speed)
+    found.update(speed_interval=(low, high), error_speed=error)
     return TractionLoss(**found, message=f"mu falls below {mu_min:g} at U_r = {speed:.4g} m/s"
-                                      f" ({interval_text(low, high, speed)}){note}")
+                                      f" ({interval_text(low, high, error)}){note}")
+
+
+def interval_error(low: float | None, high: float | None, speed: float) -> float | None:
+    """``error_speed``: the larger distance from ``speed`` to an end of its stated interval,
+    relative to it (None without both ends)."""
+    if low is None or high is None:
+        return None
+    return max(abs(speed - low), abs(high - speed)) / speed
 
 
 def interpolated_crossing(cache: dict, mu_min: float, speed: float) -> float:
@@ -294,10 +301,10 @@ def interpolated_crossing(cache: dict, mu_min: float, speed: float) -> float:
     return a if ga == gb else a + (b - a) * ga / (ga - gb)
 
 
-def interval_text(low: float | None, high: float | None, speed: float) -> str:
-    """The stated interval of a traction-loss speed in words, for its message."""
-    if low is not None and high is not None:
-        error = max(abs(speed - low), abs(high - speed)) / speed
+def interval_text(low: float | None, high: float | None, error: float | None) -> str:
+    """The stated interval of a traction-loss speed in words, for its message (``error``:
+    :func:`interval_error`)."""
+    if error is not None:
         # enough digits that the interval's ends differ where the error is small
         digits = max(4, 2 + math.ceil(-math.log10(max(error, 1e-12))))
         return (f"stated interval {low:.{digits}g}..{high:.{digits}g} m/s, where mu's stated "
