@@ -213,7 +213,7 @@ def test_cli_ctrl_c_says_what_is_saved(calls, tmp_path, capsys, monkeypatch):
     args = ["grooves", "cases/base.toml", "--mu-min", "0.2", "--out", str(tmp_path)]
     assert main(args) == 130
     err = capsys.readouterr().err
-    assert "interrupted: 1 of 32 points saved" in err and "run the same command" in err
+    assert "interrupted: 1 of 32 designs saved" in err and "run the same command" in err
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]   # no lock left
 
 

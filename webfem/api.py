@@ -113,20 +113,26 @@ def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
                **values) -> list[Result]:
     """Solve many cases at once: the closed form and the fitted model evaluate every point
     in one vectorised call (summaries and their wrap profiles, no film fields); the FE
-    models and auto walk them with :func:`solve_along`.
+    models and auto walk them with :func:`solve_along`. ``cases`` holds what :func:`solve`
+    takes: Cases, case files or bundled cases' names (a name that is none of these is the
+    same InputError as :func:`solve`'s).
 
     Every model keeps every point, in order: a point it cannot answer (outside the fitted
-    model's domain, no closed-form answer, no admissible FE solution, not converged) comes
-    back with ``converged = False`` and the reason in ``solver_message`` and ``warnings``
-    (:func:`webfem.result.refused` where there are no numbers), so one refused point does
-    not lose the others' answers. Input errors (an unknown option) still raise.
+    model's domain, no closed-form answer, no admissible FE solution) comes back with
+    ``converged = False``, the reason in ``solver_message`` and first in ``warnings``, and
+    its numbers NaN (:func:`webfem.result.refused`; the closed form the same), so one
+    refused point does not lose the others' answers. An FE point that did not converge
+    comes back as its last iterate (``converged = False``, numbers kept for inspection, as
+    ``ConvergenceError.result`` holds it). Input errors (an unknown option, a case that does
+    not exist) still raise.
 
     >>> rs = solve_many([Case().updated({"roller.speed": u}) for u in (20.0, 30.0)],
     ...                 model="closed-form")
     >>> [r["model"] for r in rs]
     ['closed-form', 'closed-form']
     """
-    cases = list(cases)
+    # what solve takes, every model: a Case, a case file or a bundled case's name
+    cases = [as_case(c) for c in cases]
     if model == "closed-form":
         from .models.closed import solve_many as closed_many
         make_options(model, options, **values)          # checked, though none apply

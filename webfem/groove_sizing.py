@@ -166,14 +166,14 @@ def _signature(kind: str, case: Case, opts, points: int, **grid) -> dict:
 
 
 def _run(rows_of, n: int, store, sig, columns, keys, points, progress,
-         workers: int = 1) -> list[dict]:
+         workers: int = 1, what: str = "designs", notice=None) -> list[dict]:
     """Every row, through the resumable store when there is one, else in memory; in
     ``workers`` processes when more than one (each row is solved from cold, so the rows do
     not depend on which process solved them). A design without an answer is kept too: a
     re-run would only repeat its failure (delete the CSV to solve everything again)."""
     if store is not None:
         return run_points(store, sig, columns, keys, points, rows_of, progress=progress,
-                          keep_failures=True, workers=workers)
+                          keep_failures=True, workers=workers, what=what, notice=notice)
     out: list = [None] * n
     finished = 0
 
@@ -201,7 +201,8 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
                land_fractions: Sequence[float] = DEFAULT_LAND_FRACTIONS,
                depths: Sequence[float] = (DEFAULT_DEPTH,), options=None,
                progress: Callable[[int, int], None] | None = None,
-               store=None, workers: int = 1) -> list[GrooveDesign]:
+               store=None, workers: int = 1,
+               notice: Callable[[str], None] | None = None) -> list[GrooveDesign]:
     """Every design (pitch x land fraction x depth) at every roller speed, solved with fe2d.
 
     Parameters
@@ -227,6 +228,9 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
         Designs solved at once, each in a process of its own (1: in this process). Each
         design is solved from cold, so the answers do not depend on it; each process holds
         one design's matrices (about 1.2 GB at the default grid's largest).
+    notice : callable, optional
+        ``notice(text)``: told in one line when a ``store`` is resumed (how many designs are
+        there, how many left) or an old table there is started afresh.
 
     Returns
     -------
@@ -262,7 +266,7 @@ def groove_map(case: Case, mu_min: float, *, speeds: Sequence[float] | None = No
                      land_fractions=land_fractions, depths=depths)
     rows = _run(row, len(designs), store, sig, MAP_COLUMNS,
                 ("speed", "pitch", "width", "depth"), [d[:4] for d in designs], progress,
-                workers)
+                workers, "designs", notice)
     return [GrooveDesign(r["speed"], r["pitch"], r["width"], r["depth"], r["land_fraction"],
                          r.get("mu"), r.get("h_center"), r.get("contact_share"),
                          bool(r["converged"]),
@@ -321,7 +325,8 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
                    depth: float = DEFAULT_DEPTH, speed_range=LOSS_SPEED_RANGE,
                    n_scan: int = LOSS_SCAN, xtol: float = 1e-2, options=None,
                    progress: Callable[[int, int], None] | None = None,
-                   store=None, workers: int = 1) -> list[LossSpeed]:
+                   store=None, workers: int = 1,
+                   notice: Callable[[str], None] | None = None) -> list[LossSpeed]:
     """The traction-loss speed (mu falls to ``mu_min`` after its peak) of the smooth roller
     and of every groove geometry, with fe2d.
 
@@ -353,6 +358,8 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
         (case, grid, ``mu_min``, scan, options) solves only what is missing.
     workers : int
         Geometries searched at once, each in a process of its own (1: in this process).
+    notice : callable, optional
+        As :func:`groove_map`'s (geometries).
 
     Returns
     -------
@@ -381,7 +388,7 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
                      pitches=pitches, land_fractions=land_fractions, depth=float(depth),
                      speed_range=list(speed_range), n_scan=n_scan, xtol=xtol)
     rows = _run(row, len(shapes), store, sig, LOSS_COLUMNS, ("pitch", "width", "depth"),
-                [s[:3] for s in shapes], progress, workers)
+                [s[:3] for s in shapes], progress, workers, "geometries", notice)
     return [LossSpeed(r["pitch"], r["width"], r["depth"], r["land_fraction"],
                       r.get("loss_speed"), r.get("mu_peak"), r.get("speed_peak"),
                       int(r.get("evaluations") or 0), bool(r["converged"]),

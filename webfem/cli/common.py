@@ -23,6 +23,7 @@ import os
 import sys
 import tempfile
 import textwrap
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..bundled import bundled_cases, load_case, locate_case
@@ -71,12 +72,52 @@ def case_path(text: str) -> str:
 
 def announce_case(args) -> None:
     """Say on stderr which file a bare case name stood for (once per command), after the
-    case was read whole: an input error stays the one line of a failure."""
-    for attr in ("case",):
-        note = getattr(getattr(args, attr, None), "note", None)
-        if note and not getattr(args, "_case_announced", False):
-            print(f"webfem: {note}", file=sys.stderr)
-            args._case_announced = True
+    case was read whole: an input error stays the one line of a failure; and, unless
+    ``--quiet``, which web material keys a user's case file left to the defaults
+    (:func:`defaults_note`)."""
+    if getattr(args, "_case_announced", False):
+        return
+    note = getattr(getattr(args, "case", None), "note", None)
+    if note:
+        print(f"webfem: {note}", file=sys.stderr)
+    if not getattr(args, "quiet", False) and getattr(args, "case", None) is not None:
+        said = defaults_note(locate_case(args.case)[0], overrides(args))
+        if said:
+            print(f"webfem: {said}", file=sys.stderr)
+    args._case_announced = True
+
+
+#: The web's material keys: a case file that leaves them out describes the base case's
+#: newsprint, whatever web it meant (a 12 um PET film given its thickness alone keeps
+#: newsprint's E_b 175 kPa and sigma 4 um).
+WEB_MATERIAL = ("thickness", "modulus_thickness", "modulus_md", "roughness", "permeability",
+                "density")
+
+
+def defaults_note(path, overrides_: dict) -> str | None:
+    """One line naming the web material keys (:data:`WEB_MATERIAL`) a user's case file
+    at ``path`` leaves out (and ``--set`` does not give), with the base case's values it
+    then takes; None for a bundled case (each states what it leaves out, on purpose) or
+    a file that gives them all."""
+    from ..bundled import bundled_cases
+    from ..case import read_toml
+    from ..keys import key_unit
+    path = Path(path)
+    try:
+        if path.resolve() in {p.resolve() for p in bundled_cases().values()}:
+            return None
+        web = read_toml(path)[0].get("web", {})
+    except (InputError, OSError):
+        return None
+    missing = [k for k in WEB_MATERIAL if k not in web and f"web.{k}" not in overrides_]
+    if not missing:
+        return None
+    base = Case().web
+    values = ", ".join(f"web.{k} = {getattr(base, k):g} {key_unit('web.' + k)}"
+                       for k in missing)
+    return (f"{path} leaves out {len(missing)} of the web's {len(WEB_MATERIAL)} material "
+            f"keys, which take the base case's newsprint values: {values} (give the web's "
+            "own; --quiet drops this line)")
 
 
 #: Keeps the options listed in the epilog one per line.
@@ -271,3 +312,20 @@ def print_json(data, units: bool = True) -> None:
 def error_line(text: str) -> None:
     """``webfem: error: TEXT`` on stderr, on one line."""
     print("webfem: error: " + " ".join(str(text).split()), file=sys.stderr)
+
+
+@contextmanager
+def saved_if_interrupted(rows, csv_path, what: str = "points"):
+    """Ctrl-C after a resumable run finished (while its chart or table is drawn) still says
+    how many of its ``rows`` are saved in ``csv_path`` (the converged ones, or every row
+    where ``what`` is "designs" or "geometries": a map keeps its failures), as an
+    interruption during the run does (:class:`webfem.sweeps.SweepInterrupted`)."""
+    from ..sweeps.interrupt import SweepInterrupted, saved_count
+    try:
+        yield
+    except KeyboardInterrupt as err:
+        if saved_count(err) is not None:
+            raise
+        kept = len(rows) if what != "points" else sum(
+            1 for r in rows if (r.get("converged") if isinstance(r, dict) else r.converged))
+        raise SweepInterrupted(kept, len(rows), csv_path, what) from err

@@ -17,7 +17,8 @@ from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITC
 from ..units import convert, display, to_si, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
                      add_units_argument, case_from, local_workers, model_options,
-                     output_folder, positive_int, print_json, speed_value)
+                     output_folder, positive_int, print_json, saved_if_interrupted,
+                     speed_value)
 
 #: Worker processes of a map unless told (at most the machine's cores): its designs are
 #: independent cold solves, so two cores halve its time.
@@ -236,7 +237,18 @@ def run(args) -> int:
     designs = groove_map(case, args.mu_min, speeds=args.speed, pitches=lists["pitches"],
                          land_fractions=lists["lands"], depths=lists["depths"],
                          options=options, progress=Progress(args.quiet, "designs"),
-                         store=folder / f"{stem}.csv", workers=_workers(args.workers))
+                         store=folder / f"{stem}.csv", workers=_workers(args.workers),
+                         notice=_notice)
+    with saved_if_interrupted(designs, folder / f"{stem}.csv", "designs"):
+        return _after_map(args, case, options, lists, folder, stem, designs)
+
+
+def _notice(text: str) -> None:
+    print(f"webfem: {text}", file=sys.stderr)
+
+
+def _after_map(args, case, options, lists, folder, stem, designs) -> int:
+    """The map's table, chart and printout, then with --loss-speed the loss-speed table."""
     best = best_designs(designs)
     print(f"wrote {folder / f'{stem}.csv'}", file=sys.stderr)
     from ..io.groove_charts import groove_chart, loss_speed_chart
@@ -256,17 +268,18 @@ def run(args) -> int:
                                 land_fractions=lists["loss_lands"], depth=lists["depths"][0],
                                 options=options, progress=Progress(args.quiet, "geometries"),
                                 store=folder / f"{stem}_loss.csv",
-                                workers=_workers(args.workers))
-        print(f"wrote {folder / f'{stem}_loss.csv'}", file=sys.stderr)
-        copy = write_in_units([x.to_dict() for x in losses], folder / f"{stem}_loss.csv",
-                              args.units)
-        if copy is not None:
-            print(f"wrote {copy}", file=sys.stderr)
-        chart = loss_speed_chart(losses, args.mu_min, folder / f"{stem}_loss.png",
-                                 LOSS_SPEED_RANGE,
-                                 title=f"{Path(args.case).stem}: speed at which mu falls to "
-                                       f"{args.mu_min:g} (fe2d)", units=args.units)
-        print(f"wrote {chart}", file=sys.stderr)
+                                workers=_workers(args.workers), notice=_notice)
+        with saved_if_interrupted(losses, folder / f"{stem}_loss.csv", "geometries"):
+            print(f"wrote {folder / f'{stem}_loss.csv'}", file=sys.stderr)
+            copy = write_in_units([x.to_dict() for x in losses],
+                                  folder / f"{stem}_loss.csv", args.units)
+            if copy is not None:
+                print(f"wrote {copy}", file=sys.stderr)
+            chart = loss_speed_chart(losses, args.mu_min, folder / f"{stem}_loss.png",
+                                     LOSS_SPEED_RANGE,
+                                     title=f"{Path(args.case).stem}: speed at which mu falls "
+                                           f"to {args.mu_min:g} (fe2d)", units=args.units)
+            print(f"wrote {chart}", file=sys.stderr)
     code = 0 if all(best.values()) else 4
     if args.json:
         out = {"mu_min": args.mu_min, "designs": [d.to_dict() for d in designs],

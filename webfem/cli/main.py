@@ -69,12 +69,13 @@ def _stdout_gone() -> None:
 
 
 def _interrupted(err: KeyboardInterrupt) -> None:
-    """One line; a sweep's interruption (webfem.sweeps.SweepInterrupted) says what is saved."""
-    saved, total, path = (getattr(err, k, None) for k in ("saved", "total", "csv_path"))
+    """One line; a sweep's interruption (webfem.sweeps.SweepInterrupted, also under a
+    second Ctrl-C that came on top of it) says what is saved."""
+    from ..sweeps.interrupt import saved_count
+    counted = saved_count(err)
     start = "\n" if sys.stderr.isatty() else ""   # after a live progress line
-    if saved is not None and total is not None and path is not None:
-        print(f"{start}webfem: interrupted: {saved} of {total} points saved in {path}; run "
-              "the same command to continue", file=sys.stderr)
+    if counted is not None:
+        print(f"{start}webfem: {counted}", file=sys.stderr)
     else:
         print(f"{start}webfem: interrupted", file=sys.stderr)
 
@@ -125,7 +126,12 @@ def main(argv=None) -> int:
         error_line(err)
         return 3
     except KeyboardInterrupt as err:
-        _interrupted(err)
+        from ..sweeps.interrupt import hold_interrupts
+        restore = hold_interrupts()     # a second Ctrl-C must not cut the one line short
+        try:
+            _interrupted(err)
+        finally:
+            restore()
         return 143 if isinstance(err.__cause__ or err, Terminated) else 130
     except BrokenPipeError:
         _stdout_gone()

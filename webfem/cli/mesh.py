@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..errors import InputError
 from ..models.start_mesh import start_meshes
 from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
                      options_epilog, output_folder)
@@ -16,21 +17,36 @@ def add_parser(subparsers) -> None:
         description="Write CASE_web.vtu (x nodes along the web) and CASE_film.vtu (x times "
                     "the width nodes), in metres, before the models refine where the film is "
                     "thin. The meshes follow fe2d's options entry, level, symmetry and "
-                    "width_fine.",
-        formatter_class=HELP_FORMATTER, epilog=options_epilog(["fe2d"]))
-    # --model is accepted for old scripts; the meshes are fe2d's
+                    "width_fine (--model fe2d or auto, the default); --model fe1d writes its "
+                    "own web mesh alone (options entry, level: it solves no film across the "
+                    "width). The closed form and the fitted model solve no mesh: refused.",
+        formatter_class=HELP_FORMATTER, epilog=options_epilog(["fe2d", "fe1d"]))
     add_case_arguments(p, default_model="fe2d")
     p.add_argument("--out", required=True, help="output folder")
 
 
+#: Models without a mesh: what they evaluate instead (the refusal says it).
+NO_MESH = {"closed-form": "Eq. 21 and its friction in closed form",
+           "fitted": "a fit of fe2d's answers"}
+
+
 def run(args) -> int:
     # imported here: meshio took ~0.1 s of every command's start (each builds all parsers)
-    from ..io.meshes import write_meshes
+    from ..io.meshes import write_meshes, write_web_mesh
 
+    if args.model in NO_MESH:
+        # it used to write fe2d's meshes under any --model: files no solve of it uses
+        raise InputError(f"--model {args.model} solves no mesh ({NO_MESH[args.model]}): "
+                         "`webfem mesh` writes the FE models' starting meshes, --model fe2d "
+                         "(web and film) or fe1d (the web)")
     case = case_from(args)
-    options = model_options(args, "fe2d")
+    model = "fe1d" if args.model == "fe1d" else "fe2d"   # auto's finest model is fe2d
+    options = model_options(args, model)
     folder = output_folder(args.out, "--out")
     x, z = start_meshes(case, options)
-    for path in write_meshes(x, z, folder, Path(args.case).stem):
+    stem = Path(args.case).stem
+    paths = (write_meshes(x, z, folder, stem) if model == "fe2d" else
+             [write_web_mesh(x, folder, stem)])
+    for path in paths:
         print(f"wrote {path}")
     return 0

@@ -12,7 +12,7 @@ from ..errors import InputError
 from .common import (DEFAULT_MODEL, HELP_FORMATTER, Progress, add_case_arguments, announce_case,
                      add_dask_argument, add_quiet_argument, add_units_argument, model_options,
                      options_epilog,
-                     output_folder, overrides, positive_int)
+                     output_folder, overrides, positive_int, saved_if_interrupted)
 
 
 #: What ``webfem sweep --help`` says before the arguments: the rule for a CSV already there.
@@ -68,9 +68,6 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    from ..api import sweep as sweep_in_memory
-    from ..io.charts import answered, sweep_chart
-    from ..io.tables import ROW_KEYS, sweep_roles, sweep_rows, write_in_units
     from ..io.vtu import SweepVtu
     from ..sweeps import run as run_sweep
 
@@ -97,6 +94,16 @@ def run(args) -> int:
                      dask=args.dask, progress=Progress(args.quiet), replace=args.replace,
                      notice=lambda text: print(f"webfem: {text}", file=sys.stderr),
                      vtu=SweepVtu(vtu_dir, stem, spec.parameter) if vtu_dir else None)
+    with saved_if_interrupted(rows, csv_path):
+        return _chart(args, spec, rows, out, stem, csv_path)
+
+
+def _chart(args, spec, rows, out, stem, csv_path) -> int:
+    """The closed-form reference, the copy in --units and the chart of a finished sweep."""
+    from ..api import sweep as sweep_in_memory
+    from ..io.charts import answered, sweep_chart
+    from ..io.tables import ROW_KEYS, sweep_roles, sweep_rows, write_in_units
+
     reference, without = None, ""
     if args.model != "closed-form":   # the paper's model beside the field solution
         try:

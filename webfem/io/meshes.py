@@ -28,7 +28,7 @@ import numpy as np
 
 from .vtu import write_mesh
 
-__all__ = ["web_line_mesh", "film_quad_mesh", "write_meshes"]
+__all__ = ["web_line_mesh", "film_quad_mesh", "write_meshes", "write_web_mesh"]
 
 
 #: What the coordinates mean (field data of every mesh file: the names carry the text).
@@ -84,3 +84,11 @@ def write_meshes(x, z, folder, stem: str, half_wrap: float | None = None) -> lis
         meaning[f"wrap edges at X = -+{half_wrap:.6g} m (R B / 2)"] = float(half_wrap)
     return [write_mesh(web_line_mesh(x, half_wrap), folder / f"{stem}_web.vtu", meaning),
             write_mesh(film_quad_mesh(x, z, half_wrap), folder / f"{stem}_film.vtu", meaning)]
+
+
+def write_web_mesh(x, folder, stem: str) -> Path:
+    """Write ``STEM_web.vtu`` (nodes ``x`` [m]) alone into ``folder``: fe1d's mesh, which
+    has no film across the width."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    return write_mesh(web_line_mesh(x), folder / f"{stem}_web.vtu", dict(COORDINATES))

@@ -47,8 +47,9 @@ clamped at 0 as printed.
 Where there is no answer, :func:`solve_case` raises
 :class:`~webfem.errors.NoAdmissibleSolution` (exit 2 on the command line) naming the reason,
 or with ``raise_on_failure=False`` returns the result with ``converged = False``, the reason
-in ``solver_message`` and in ``warnings``; :func:`solve_many` (sweeps) returns every point
-that way, as sweeps keep any point no model can answer. :func:`no_answer` reads a result.
+in ``solver_message`` and first in ``warnings``, the computed numbers NaN (null in JSON) and
+no fields; :func:`solve_many` (sweeps) returns every point that way, as sweeps keep any
+point no model can answer. :func:`no_answer` reads a result.
 
 Examples
 --------
@@ -116,8 +117,9 @@ def evaluate(*, R, U_r, U_w, L, T, B, k, t, eta, E_b, sigma, mu_cc, C, variant="
     traction at the stated speeds (the film's drag alone where nothing slides; the summary
     then reports the onset traction, :func:`webfem.physics.effects.traction_summary`).
     ``no_answer`` is 0 where the closed form has an answer, else the index into
-    :data:`NO_ANSWER` of why not (see the module text); the numbers are kept there for
-    inspection, never to be read as an answer. ``mean_free_path`` [m] (at p_a) sets the
+    :data:`NO_ANSWER` of why not (see the module text); the arrays keep the numbers there
+    for inspection, never to be read as an answer (a result's summary makes them NaN:
+    :func:`summary_from_arrays`). ``mean_free_path`` [m] (at p_a) sets the
     bound on mu (:func:`mu_bound`); ``roughness``: the film's shear through the roughness
     (``air.roughness_flow = "mean-gap"``). With ``variant="loads"`` the gaps are the resting
     web's where Eq. 21 lands it, max(h, h_c); ``resting`` and ``compression`` say where that
@@ -226,10 +228,20 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     return out
 
 
+#: The summary's computed numbers, NaN where the closed form has no answer (the case's own
+#: groups, lambda, beta, eps, kappa, T_eff, stay: they say where the point is).
+NO_ANSWER_NAN = ("h_center", "h_inlet", "h_outlet", "h_min", "mu", "delta_T", "h_c",
+                 "share_boundary", "share_mixed", "share_fluid", "contact_share",
+                 "compression", "mu_onset", "mu_film", "delta_T_film", "delta_T_available",
+                 "slip_margin")
+
+
 def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Summary:
     """The :class:`~webfem.result.Summary` of point ``i`` of :func:`evaluate`'s output;
-    where the closed form has no answer, ``converged`` is False and ``solver_message`` and
-    the last of the ``warnings`` say why (see the module text)."""
+    where the closed form has no answer, ``converged`` is False, ``solver_message`` and the
+    first of the ``warnings`` say why (see the module text), the computed numbers
+    (:data:`NO_ANSWER_NAN`) are NaN and ``regime`` is ``"none"``, as
+    :func:`webfem.result.refused` gives the other models'."""
     s = {key: (np.asarray(v)[i] if np.ndim(v) else v) for key, v in values.items()}
     s = {k: (v.item() if hasattr(v, "item") else v) for k, v in s.items()}
     code = int(s.pop("no_answer"))
@@ -246,7 +258,11 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Sum
         # the reason reads from the traction at the stated speeds, which it judged
         s["solver_message"] = no_answer_reason(
             code, case, {**s, "mu": s["mu_film"] if s["mu_film"] is not None else s["mu"]})
-        s["warnings"].append("no closed-form answer: " + s["solver_message"])
+        # the reason first (what a reader acts on), and no number that could be read as an
+        # answer: NaN (null in JSON), as webfem.result.refused gives every model's
+        s["warnings"].insert(0, "no closed-form answer: " + s["solver_message"])
+        s.update({k: float("nan") for k in NO_ANSWER_NAN if s.get(k) is not None},
+                 regime="none", residual=float("nan"), resting=None)
     else:
         s.update({f"error_{q}": e for q, e in closed_form_errors(case, s).items()},
                  error_basis=ERROR_BASIS)
@@ -277,8 +293,9 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
 
     Where the closed form has no answer (module text) it raises
     :class:`~webfem.errors.NoAdmissibleSolution` naming the reason, or with
-    ``raise_on_failure=False`` returns the result with ``converged = False`` and the reason
-    in ``solver_message`` (:func:`no_answer`), never to be read as an answer.
+    ``raise_on_failure=False`` returns the result with ``converged = False``, the reason
+    in ``solver_message`` (:func:`no_answer`) and first in ``warnings``, its computed
+    numbers NaN and no fields: never to be read as an answer.
     """
     grooves_refused(case, "the closed form")
     if raise_on_failure:
@@ -289,9 +306,13 @@ def solve_case(case: Case, options: ClosedFormOptions, *, initial: Result | None
                       roughness=case.roughness_flow_model == "mean-gap")
     elapsed = time.perf_counter() - t0
     summary = summary_from_arrays(values, 0, case, elapsed)
-    if not summary.converged and raise_on_failure:
-        raise NoAdmissibleSolution(f"no admissible closed-form answer: "
-                                   f"{summary.solver_message}")
+    if not summary.converged:
+        if raise_on_failure:
+            raise NoAdmissibleSolution(f"no admissible closed-form answer: "
+                                       f"{summary.solver_message}")
+        empty = np.empty(0)     # no answer, no profile (its gaps are NaN)
+        return Result(case, summary, Fields(x=empty, h=empty),
+                      Diagnostics(reason=summary.solver_message, options=options))
     R, B = case.roller.radius, case.B
     x = np.linspace(-R * B / 2, R * B / 2, options.n_points)
     h = cf.gap(x, R, B, case.eps, case.lam, case.kappa)
@@ -319,8 +340,9 @@ def solve(case: Case, options: ClosedFormOptions | None = None, **values) -> Res
 
 def solve_many(cases) -> list[Result]:
     """Solve many cases in one vectorised evaluation (summaries only, no fields). A point
-    where the closed form has no answer is returned with ``converged = False`` and the
-    reason in ``solver_message`` (what :func:`solve_case` would raise), as sweeps keep it."""
+    where the closed form has no answer is returned with ``converged = False``, the reason
+    in ``solver_message`` (what :func:`solve_case` would raise) and first in ``warnings``,
+    its computed numbers NaN, as sweeps keep it."""
     cases = list(cases)
     for c in cases:
         grooves_refused(c, "the closed form")
@@ -335,8 +357,10 @@ def solve_many(cases) -> list[Result]:
         elapsed = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
             # summaries only: the fields are the wrap endpoints of the linear Eq. 21 gap
+            # (none where there is no answer)
             s = summary_from_arrays(values, j, cases[i], elapsed)
-            half = cases[i].roller.radius * cases[i].B / 2
+            half = cases[i].roller.radius * cases[i].B / 2 if s.converged else None
             out[i] = Result(cases[i], s, Fields(x=np.array([-half, half]),
-                                                h=np.array([s.h_inlet, s.h_outlet])))
+                                                h=np.array([s.h_inlet, s.h_outlet]))
+                            if half is not None else Fields(x=np.empty(0), h=np.empty(0)))
     return out  # type: ignore[return-value]

@@ -6,11 +6,13 @@ sweep continues where the last one stopped; a lock keeps two sweeps from writing
 * :mod:`~webfem.sweeps.runner`: :func:`run`: resume, lock, serial or parallel execution.
 * :mod:`~webfem.sweeps.workers`: what runs in worker processes or on Dask.
 * :mod:`~webfem.sweeps.store`: the CSV, its sidecar and lock, resuming.
+* :mod:`~webfem.sweeps.interrupt`: what an interrupted run says it saved.
 * :mod:`~webfem.sweeps.table`: the CSV's columns, rows from results, reading rows back.
 * :mod:`webfem.files` (shared with io): atomic writes with the user's umask, hidden temporary files.
 """
 
-from .runner import SweepInterrupted, run
+from .interrupt import SweepInterrupted
+from .runner import run
 from .workers import PointError, solve_chunk
 from .table import ROW_KEYS, sweep_rows
 

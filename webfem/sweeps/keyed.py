@@ -23,7 +23,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Callable, Sequence
 
-from .runner import SweepInterrupted
+from .interrupt import SweepInterrupted, hold_interrupts
 from .lock import SweepLock
 from .store import Store
 from .table import typed
@@ -41,7 +41,8 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
                points: Sequence[Sequence[float]], solve: Callable[[int], dict], *,
                progress: Callable[[int, int], None] | None = None,
                keep_failures: bool = False, workers: int = 1,
-               dask: str | None = None) -> list[dict]:
+               dask: str | None = None, what: str = "points",
+               notice: Callable[[str], None] | None = None) -> list[dict]:
     """Solve (or resume) every point, saving each row as it finishes.
 
     Parameters
@@ -74,6 +75,11 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
         LocalCluster of ``workers`` processes, ``"tcp://host:port"`` joins a running
         scheduler (connected before the table is touched; ``solve`` must be importable by
         the cluster's workers). A Dask worker solves in a thread, not its main one.
+    what : str
+        What a point is called in messages ("designs", "geometries").
+    notice : callable, optional
+        ``notice(text)``: told, in one line, when the table is resumed (how many ``what``
+        are there, how many are left) or an existing table of another run is started over.
 
     Returns
     -------
@@ -85,7 +91,8 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     InputError
         An output that cannot be written, or a table locked by a running writer.
     SweepInterrupted
-        Ctrl-C: the files are closed, the lock released; says how many points are saved.
+        Ctrl-C: the files are closed, the lock released; says how many ``what`` are saved
+        (a second Ctrl-C during the clean-up is ignored).
     """
     check_workers(workers)
     check_dask(dask)
@@ -100,12 +107,20 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
     lock = SweepLock(csv_path, sig, len(points))
     saved = 0
     engine = None
+    restore = None
     try:
         lock.acquire()
+        held = csv_path.is_file() and csv_path.stat().st_size > 0
         done = store.load(keys)
         saved = len(done)                       # the rows a re-run keeps
         total = len(points)
         todo = [n for n in range(total) if n not in done]
+        if notice and done:
+            notice(f"{csv_path}: resuming: {len(done)} of {total} {what} already there, "
+                   + (f"solving the other {len(todo)}" if todo else "nothing to solve"))
+        elif notice and held:
+            notice(f"{csv_path}: starting afresh: the table there is not this run's (other "
+                   "arguments or case, or no readable sidecar), its rows are replaced")
         if dask is not None and todo:
             engine = Dask(dask, workers)        # an unreachable scheduler: before any write
         elif workers > 1 and len(todo) > 1:
@@ -130,7 +145,8 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
                 record(n, solve(n))
         return typed(store.finish(keys))
     except KeyboardInterrupt as err:
-        raise SweepInterrupted(saved, len(points), csv_path) from err
+        restore = hold_interrupts()   # a second Ctrl-C must not cut the clean-up or the count
+        raise SweepInterrupted(saved, len(points), csv_path, what) from err
     finally:
         try:
             store.close()
@@ -138,3 +154,5 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
                 engine.close()
         finally:
             lock.release()
+            if restore is not None:
+                restore()

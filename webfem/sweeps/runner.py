@@ -24,6 +24,7 @@ from ..api import sweep as sweep_in_memory
 from ..errors import InputError
 from ..models.registry import make_options
 from ..result import Result
+from .interrupt import SweepInterrupted, hold_interrupts
 from .lock import SweepLock
 from .store import Store, point_key, signature
 from .table import failure_row, sweep_rows, typed
@@ -34,16 +35,6 @@ __all__ = ["run", "SweepInterrupted", "CHUNK"]
 #: Default most points per parallel task: each chunk's first point starts cold, which costs
 #: iterations; longer chunks cost balance at the end and more work lost to Ctrl-C.
 CHUNK = 10
-
-
-class SweepInterrupted(KeyboardInterrupt):
-    """Ctrl-C during :func:`run`: the files are closed and the lock released; ``saved`` of
-    ``total`` points are in ``csv_path`` and the same call continues from there."""
-
-    def __init__(self, saved: int, total: int, csv_path: Path):
-        super().__init__(f"interrupted: {saved} of {total} points saved in {csv_path}; "
-                         "run the same command to continue")
-        self.saved, self.total, self.csv_path = saved, total, Path(csv_path)
 
 
 @dataclass(frozen=True)
@@ -155,7 +146,8 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
         sweep (the message names it), or a CSV of another sweep without ``replace``; all
         before anything is solved.
     SweepInterrupted
-        Ctrl-C (a ``KeyboardInterrupt``): says how many points are saved.
+        Ctrl-C (a ``KeyboardInterrupt``): says how many points are saved (a second Ctrl-C
+        during the clean-up is ignored: :mod:`webfem.sweeps.interrupt`).
 
     Examples
     --------
@@ -177,6 +169,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
     lock = SweepLock(out_csv, sig)
     saved: set[int] = set()
     engine = None
+    restore = None
     try:
         lock.acquire()
         done = store.decide(keys, replace=replace, notice=notice)
@@ -230,6 +223,7 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
             engine.run(tasks, record_chunk)
         return typed(store.finish(keys))
     except KeyboardInterrupt as err:
+        restore = hold_interrupts()   # a second Ctrl-C must not cut the clean-up or the count
         raise SweepInterrupted(len(saved), total, out_csv) from err
     finally:
         try:
@@ -240,3 +234,5 @@ def run(spec, model: str, out_csv, *, options=None, workers: int = 1,
                 vtu.close()
         finally:
             lock.release()
+            if restore is not None:
+                restore()

@@ -96,8 +96,40 @@ def _differences(old: dict, new: dict) -> list[str]:
         if label not in cases:
             why.append(f"series {label!r}, which this sweep does not have")
         elif not _same_case(case, cases[label]):
-            why.append(f"series {label!r} with other case values")
+            why.append(f"series {label!r} with other case values "
+                       f"({_case_changes(case, cases[label])})")
     return why
+
+
+def _case_changes(old, new, prefix: str = "", most: int = 3) -> str:
+    """The case keys whose values differ, old -> new (``web.tension 80 -> 120``), the first
+    ``most`` of them: a refused sweep names what changed, not only that something did.
+
+    >>> _case_changes({"web": {"tension": 80.0, "speed": 0.0}}, {"web": {"tension": 120.0,
+    ...                                                                  "speed": 0.0}})
+    'web.tension 80 -> 120'
+    """
+    changes = _changed_keys(old, new, prefix)
+    text = "; ".join(f"{key} {_shown(a)} -> {_shown(b)}" for key, a, b in changes[:most])
+    return text + (f"; and {len(changes) - most} more" if len(changes) > most else "")
+
+
+def _changed_keys(old, new, prefix: str) -> list[tuple[str, object, object]]:
+    if isinstance(old, dict) and isinstance(new, dict):
+        out = []
+        for k in list(old) + [k for k in new if k not in old]:
+            a, b = old.get(k, None), new.get(k, None)
+            if k not in old and b is None:    # a key added later, left out: the same
+                continue
+            out += _changed_keys(a, b, f"{prefix}{k}.")
+        return out
+    return [] if old == new else [(prefix.rstrip("."), old, new)]
+
+
+def _shown(value) -> str:
+    if value is None:
+        return "(not set)"
+    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 def _same_case(old, new) -> bool:
