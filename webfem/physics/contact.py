@@ -96,8 +96,8 @@ def _gaussian_gap(p_bar, E_b, sigma, t):
 
     In log space (:func:`~webfem.physics.roughness.log_mean_excess`) nothing underflows,
     however stiff the surface: a stiff one (E_b sigma / (t p_bar) = 1e5) rests a few sigma
-    above its mean plane (about 4), where p_c itself is 1e-5 of its value at h = 0 and
-    beyond 38 sigma it is 0 in floating point. ln p_c is concave and decreasing, so after
+    above its mean plane (3.9), where p_c itself is 2.5e-5 of its value at h = 0; beyond
+    38 sigma it is 0 in floating point. ln p_c is concave and decreasing, so after
     at most one step the iterates fall monotonically to the root. The start: where the
     density phi(h / sigma) / sigma = p_bar t / (E_b sigma), above the root (E = sigma phi
     g < sigma phi there), or, for a load the asperities carry only compressed (h_c < 0),
