@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .physics.contact import TAIL_SIGMAS, beyond_the_surface
 from .physics.effects import margin_range, margin_verdict
 
 __all__ = ["describe", "verdict", "traction_text", "error_text", "resting_text",
@@ -112,6 +113,15 @@ def verdict(s, case=None) -> str:
                     f"{low:.2g} to {high:.2g} (needs {s.delta_T_required:.3g} N/m, can carry "
                     f"{s.delta_T_available:.3g} N/m at mu_onset {s.mu_onset:.3g}); a finer "
                     "model decides")
+    if (s.slip_margin >= 1.0 and case is not None
+            and beyond_the_surface(case, s.h_c, s.contact_share)):
+        # the margin rests on asperities the exponential law puts above any real surface
+        return (f"{head}{'be ' if sliding else ''}unsure: margin {s.slip_margin:.2g} (needs "
+                f"{s.delta_T_required:.3g} N/m, can carry {s.delta_T_available:.3g} N/m at "
+                f"mu_onset {s.mu_onset:.3g}), but only by the exponential heights' tail: h_c "
+                f"= {s.h_c / s.sigma:.3g} sigma, beyond {TAIL_SIGMAS:g} sigma where no "
+                "surface has asperities (see the warning); friction.distribution = "
+                "\"gaussian\" decides")
     if s.slip_margin >= 1.0:
         return (f"{head}{'hold' if sliding else 'holds'} with margin {s.slip_margin:.2g} "
                 f"(needs {s.delta_T_required:.3g} N/m, can carry {s.delta_T_available:.3g} "

@@ -66,7 +66,8 @@ import numpy as np
 
 from ..case import Case
 from ..physics import closed_form as cf
-from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
+from ..physics.contact import (REGIMES, contact_gap, contact_pressure, regime_code,
+                               tail_warning)
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..errors import NoAdmissibleSolution
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
@@ -223,6 +224,9 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     slip = slip_warning(case, summary["h_min"])
     if slip:
         out.append(slip)
+    tail = tail_warning(case, summary["h_c"], summary["contact_share"])
+    if tail:
+        out.append(tail)
     return out
 
 

@@ -156,3 +156,45 @@ def regime_code(h, h_c, sigma):
     """0 boundary (h < h_c or landed), 1 mixed (h_c <= h <= 3 sigma), 2 fluid (h > 3 sigma)."""
     h = np.asarray(h, dtype=float)
     return np.where((h < h_c) | (h <= 0.0), 0, np.where(h <= 3.0 * sigma, 1, 2))
+
+
+#: Above this many sigma the exponential heights (Eq. 2) no longer describe a surface: a
+#: surface's peak-to-valley height Rmax is about 7 sigma (the paper's newsprint, Table 1:
+#: 27.6 um = 6.9 sigma), so its tallest asperities stand about 3.5 sigma above the mean
+#: plane, and the tallest of 1e5 Gaussian summits about sqrt(2 ln 1e5) = 4.8 sigma; Eq. 2's
+#: tail has no end (it puts 0.5 exp(-5) = 0.34 % of the heights above 5 sigma, the Gaussian
+#: 2.9e-7).
+TAIL_SIGMAS = 5.0
+#: The contact load share below which the tail is not worth a warning (as the summary's
+#: :data:`webfem.describe.CONTACT_NOTED`).
+TAIL_SHARE = 0.005
+
+
+def beyond_the_surface(case, h_c, contact_share) -> bool:
+    """Whether an answer's asperity contact comes from the exponential law's tail above any
+    real surface: Eq. 2's heights, h_c above :data:`TAIL_SIGMAS` sigma and the asperities
+    carrying at least :data:`TAIL_SHARE` of the wrap load (``case`` a
+    :class:`webfem.case.Case`)."""
+    return (case.friction.distribution == "exponential" and h_c is not None
+            and contact_share is not None and h_c > TAIL_SIGMAS * case.sigma
+            and contact_share >= TAIL_SHARE)
+
+
+def tail_warning(case, h_c, contact_share) -> str | None:
+    """The warning of :func:`beyond_the_surface` (None where it does not apply), with what
+    the Gaussian heights (Eq. 1) give for h_c: cheap, and where it lies far below the solved
+    gaps the contact, mu and an idler's margin rest on the tail alone."""
+    if not beyond_the_surface(case, h_c, contact_share):
+        return None
+    w, s = case.web, case.sigma
+    h_g = float(contact_gap(case.p_bar, w.modulus_thickness, s, w.thickness, "gaussian"))
+    return (f"the asperities carry {100 * contact_share:.1f} % of the wrap load, at gaps "
+            f"where the exponential heights (friction.distribution = \"exponential\", the "
+            f"paper's Eq. 2) put h_c = {h_c * 1e6:.4g} um = {h_c / s:.3g} sigma above the mean "
+            f"plane (E_b sigma / (2 t T_eff/R) = "
+            f"{w.modulus_thickness * s / (2 * w.thickness * case.p_bar):.3g}): beyond "
+            f"{TAIL_SIGMAS:g} sigma no real surface has asperities (a surface's peak-to-valley "
+            "height is about 7 sigma, the paper's newsprint 6.9 sigma), so this contact, and "
+            "the mu and idler margin it gives, come from the law's unending tail, not the "
+            f"surface; the Gaussian heights (friction.distribution = \"gaussian\") put h_c at "
+            f"{h_g * 1e6:.4g} um = {h_g / s:.3g} sigma: solve with them to compare")
