@@ -136,6 +136,9 @@ class Calibration:
                 "dof", "converged", "message", "observed", "predicted", "residuals",
                 "models_used", "interval95")
         out = {k: plain(getattr(self, k), k) for k in keys}
+        # whether the data bound each constant away from 0 (:meth:`determined`): where not,
+        # its estimate is where the fit stopped, not a measurement
+        out["determined"] = {n: self.determined(n) for n in self.estimates}
         out["notes"] = notes
         return out
 

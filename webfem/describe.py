@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .physics.contact import TAIL_SIGMAS, beyond_the_surface
 from .physics.effects import margin_range, margin_verdict
 
 __all__ = ["describe", "verdict", "idler_verdict", "small_text", "traction_text", "error_text", "resting_text",
@@ -115,7 +116,9 @@ def idler_verdict(s, case=None) -> tuple[str, str] | None:
     (:func:`verdict`) and the report's headline and warnings.
 
     With the ``case``, ``unsure`` where mu's stated error puts the margin on both sides of
-    1 (:func:`webfem.physics.effects.margin_range`). The check is at the onset of slip,
+    1 (:func:`webfem.physics.effects.margin_range`), or where a margin above 1 rests on
+    asperities the exponential law puts beyond :data:`~webfem.physics.contact.TAIL_SIGMAS`
+    sigma (:func:`~webfem.physics.contact.beyond_the_surface`). The check is at the onset of slip,
     U_r = U_w. Where the case's speeds differ the web already slides on the roller, which is
     then driven (or slipping), not an idler turning with the web, and its film is not an
     idler's: the sentence says so, and words what an idler would do from the second solve
@@ -150,6 +153,14 @@ def idler_verdict(s, case=None) -> tuple[str, str] | None:
                               f"{small_text(s.slip_margin)}, but mu's stated error allows "
                               f"{small_text(low)} to {small_text(high)} ({need}, {carry}); "
                               "a finer model decides")
+    if (s.slip_margin >= 1.0 and case is not None
+            and beyond_the_surface(case, s.h_c, s.contact_share)):
+        # the margin rests on asperities the exponential law puts above any real surface
+        return "unsure", (f"{head}{'be ' if sliding else ''}unsure: margin "
+                          f"{small_text(s.slip_margin)} ({need}, {carry}), but only by the "
+                          f"exponential heights' tail: h_c = {s.h_c / s.sigma:.3g} sigma, "
+                          f"beyond {TAIL_SIGMAS:g} sigma where no surface has asperities "
+                          "(see the warning); friction.distribution = \"gaussian\" decides")
     if s.slip_margin >= 1.0:
         return "holds", (f"{head}{'hold' if sliding else 'holds'} with margin "
                          f"{s.slip_margin:.2g} ({need}, {carry})")

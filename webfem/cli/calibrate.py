@@ -54,7 +54,9 @@ def _pm(fit, name: str, units: str = "si") -> str:
 
     value, half, se = (shown(d[name]) for d in (fit.estimates, fit.ci95, fit.stderr))
     if half is None:
-        return f"{value:.6g}{unit} (not identified by these data; see the note)"
+        # the least-squares leaves such a constant wherever it stopped (often its bound,
+        # 1e-9 of the start): a number there would read as a measurement
+        return "not determined by these data: no value (not identified; see the note)"
     if fit.determined(name):
         return (f"{rounded(value, se)} +- {half:.2g}{unit} (95 %), std. error "
                 f"{se:.2g}{unit}")

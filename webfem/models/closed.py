@@ -67,13 +67,15 @@ import numpy as np
 
 from ..case import Case
 from ..physics import closed_form as cf
-from ..physics.contact import REGIMES, contact_gap, contact_pressure, regime_code
+from ..physics.contact import (REGIMES, contact_gap, contact_pressure, regime_code,
+                               tail_warning)
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..errors import NoAdmissibleSolution
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
                                 gauss_legendre, wrap_average_linear_gap,
                                 wrap_average_loads)
-from ..physics.validity import grooves_refused, slip_warning, thin_film_check
+from ..physics.validity import (grooves_refused, slip_warning, thick_web_warning,
+                                thin_film_check)
 from ..result import Diagnostics, Fields, Result, Summary
 from .closed_refusal import NO_ANSWER, mu_bound, no_answer, no_answer_codes, no_answer_reason
 from .model_error import closed_form_errors
@@ -225,6 +227,9 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     slip = slip_warning(case, summary["h_min"])
     if slip:
         out.append(slip)
+    tail = tail_warning(case, summary["h_c"], summary["contact_share"])
+    thick = thick_web_warning(case, summary["h_min"])
+    out.extend(w for w in (tail, thick) if w)
     return out
 
 

@@ -44,6 +44,7 @@ from ..physics.contact import REGIMES, contact_gap, contact_pressure
 from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result, refused
+from ..physics.contact import tail_warning
 from ..summary import Summary
 from . import fit_groups as fg
 from .fit_file import read_fit
@@ -408,8 +409,10 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     out = []
     for i, (case, row, tr, regime, region, kind) in enumerate(zip(
             cases, zip(*columns), traction, regimes, pr["region"].tolist(), kinds)):
-        summary = Summary(**dict(zip(names, row)), **tr, **fixed, regime=regime,
-                          effects=effects[kind],
+        values = dict(zip(names, row))
+        tail = tail_warning(case, values.get("h_c"), values.get("contact_share"))
+        summary = Summary(**values, **tr, **fixed, regime=regime,
+                          effects=effects[kind], warnings=(tail,) if tail else (),
                           error_basis=basis[region] + (ONSET_BASIS if idle[i] else ""))
         fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
                         mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])

@@ -11,9 +11,9 @@ import numpy as np
 from ..case import Case
 from ..fem.outcome import SolveInfo
 from ..physics.closed_form import eq21_valid
-from ..physics.contact import REGIMES
+from ..physics.contact import REGIMES, tail_warning
 from ..physics.effects import included
-from ..physics.validity import slip_warning
+from ..physics.validity import slip_warning, thick_web_warning
 from ..result import Diagnostics, Result, Summary
 from .fields import node_fields
 from .mesh_error import MeshError
@@ -52,6 +52,9 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
     slip = slip_warning(case, ro.h_min)
     if slip:
         warnings.append(slip)
+    tail = tail_warning(case, float(prm.H_c * case.h_scale), ro.contact_share)
+    thick = thick_web_warning(case, ro.h_min)
+    warnings.extend(w for w in (tail, thick) if w)
     if not info.converged:
         # the last iterate is kept for inspection; its numbers must not pass for an answer
         # wherever the result is read (JSON, a sweep's row, a report)

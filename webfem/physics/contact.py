@@ -8,7 +8,9 @@ at separation h is p_c(h) = (E_b / t) int_h^inf (z - h) phi(z) dz. Two height de
   (Eq. 11);
 * ``"gaussian"`` (Eq. 1): phi = exp(-z^2 / (2 sigma^2)) / (sigma sqrt(2 pi)), giving exactly
   p_c = (E_b / t) [sigma / sqrt(2 pi) exp(-h^2 / (2 sigma^2)) - (h / 2) erfc(h / (sigma sqrt 2))]
-  and h_c from p_c(h_c) = pbar by Newton's method.
+  and h_c from p_c(h_c) = pbar by Newton's method on ln p_c (a stiff surface's h_c is a
+  few sigma, where p_c is many orders below its value at h = 0: in log space nothing
+  underflows).
 
 Both hold for h < 0 too (:mod:`webfem.physics.roughness`): a web whose wrap pressure exceeds
 what the asperities carry at h = 0 rests on the roller with its surface compressed.
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .roughness import mean_excess, wet_share
+from .roughness import log_mean_excess, mean_excess, wet_share
 
 __all__ = ["contact_pressure", "contact_pressure_derivative", "contact_gap", "load_ratio",
            "REGIMES", "DISTRIBUTIONS", "regime_code"]
@@ -67,7 +69,8 @@ def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
     """Gap h_c at which contact alone carries the wrap pressure p_bar = T/R [m]: Eq. 11,
     sigma ln(E_b sigma / (2 t p_bar)), while p_bar <= E_b sigma / (2 t); beyond, the web
     rests compressed (h_c < 0) on the continued law, solved by Newton's method (p_c is
-    convex and decreasing in h: monotone steps)."""
+    convex and decreasing in h: monotone steps). The Gaussian heights: p_c(h_c) = p_bar by
+    Newton's method on ln p_c (:func:`_gaussian_gap`), finite for every stiffness."""
     p_bar = np.asarray(p_bar, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         h = sigma * np.log(E_b * sigma / (2.0 * t * p_bar))
@@ -85,16 +88,33 @@ def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
                 break
         return np.where(over, g, h)
     _check(distribution)
-    # Newton on log p_c(h) = log p_bar (log p_c is concave and decreasing: monotone steps)
-    h = np.where(np.isfinite(h), h, -p_bar * t / E_b)
-    for _ in range(80):
-        pc = contact_pressure(h, E_b, sigma, t, distribution)
-        step = (np.log(pc) - np.log(p_bar)) / (
-            contact_pressure_derivative(h, E_b, sigma, t, distribution) / pc)
+    return _gaussian_gap(p_bar, E_b, sigma, t)
+
+
+def _gaussian_gap(p_bar, E_b, sigma, t):
+    """h_c of the Gaussian heights: Newton's method on ln E[(z - h)+] = ln(p_bar t / E_b).
+
+    In log space (:func:`~webfem.physics.roughness.log_mean_excess`) nothing underflows,
+    however stiff the surface: a stiff one (E_b sigma / (t p_bar) = 1e5) rests a few sigma
+    above its mean plane (3.9), where p_c itself is 2.5e-5 of its value at h = 0; beyond
+    38 sigma it is 0 in floating point. ln p_c is concave and decreasing, so after
+    at most one step the iterates fall monotonically to the root. The start: where the
+    density phi(h / sigma) / sigma = p_bar t / (E_b sigma), above the root (E = sigma phi
+    g < sigma phi there), or, for a load the asperities carry only compressed (h_c < 0),
+    h = -p_bar t / E_b, where the linear part alone carries p_bar."""
+    p_bar, E_b, sigma, t = np.broadcast_arrays(*(np.asarray(v, dtype=float)
+                                                 for v in (p_bar, E_b, sigma, t)))
+    target = np.log(p_bar * t / E_b)
+    ratio = np.exp(np.log(E_b * sigma / (t * p_bar)) - np.log(_SQ2PI))
+    h = np.where(ratio > 1.0, sigma * np.sqrt(2.0 * np.log(np.maximum(ratio, 1.0))),
+                 -p_bar * t / E_b)
+    for _ in range(100):
+        log, slope = log_mean_excess(h, sigma, "gaussian")
+        step = (log - target) / slope
         h = h - step
-        if np.all(np.abs(step) <= 1e-14 * sigma):
+        if np.all(np.abs(step) <= 1e-14 * np.maximum(sigma, np.abs(h))):
             break
-    return h
+    return h[()] if h.ndim == 0 else h
 
 
 #: A web rests on its asperities where contact carries at least this share of the wrap
@@ -136,3 +156,45 @@ def regime_code(h, h_c, sigma):
     """0 boundary (h < h_c or landed), 1 mixed (h_c <= h <= 3 sigma), 2 fluid (h > 3 sigma)."""
     h = np.asarray(h, dtype=float)
     return np.where((h < h_c) | (h <= 0.0), 0, np.where(h <= 3.0 * sigma, 1, 2))
+
+
+#: Above this many sigma the exponential heights (Eq. 2) no longer describe a surface: a
+#: surface's peak-to-valley height Rmax is about 7 sigma (the paper's newsprint, Table 1:
+#: 27.6 um = 6.9 sigma), so its tallest asperities stand about 3.5 sigma above the mean
+#: plane, and the tallest of 1e5 Gaussian summits about sqrt(2 ln 1e5) = 4.8 sigma; Eq. 2's
+#: tail has no end (it puts 0.5 exp(-5) = 0.34 % of the heights above 5 sigma, the Gaussian
+#: 2.9e-7).
+TAIL_SIGMAS = 5.0
+#: The contact load share below which the tail is not worth a warning (as the summary's
+#: :data:`webfem.describe.CONTACT_NOTED`).
+TAIL_SHARE = 0.005
+
+
+def beyond_the_surface(case, h_c, contact_share) -> bool:
+    """Whether an answer's asperity contact comes from the exponential law's tail above any
+    real surface: Eq. 2's heights, h_c above :data:`TAIL_SIGMAS` sigma and the asperities
+    carrying at least :data:`TAIL_SHARE` of the wrap load (``case`` a
+    :class:`webfem.case.Case`)."""
+    return (case.friction.distribution == "exponential" and h_c is not None
+            and contact_share is not None and h_c > TAIL_SIGMAS * case.sigma
+            and contact_share >= TAIL_SHARE)
+
+
+def tail_warning(case, h_c, contact_share) -> str | None:
+    """The warning of :func:`beyond_the_surface` (None where it does not apply), with what
+    the Gaussian heights (Eq. 1) give for h_c: cheap, and where it lies far below the solved
+    gaps the contact, mu and an idler's margin rest on the tail alone."""
+    if not beyond_the_surface(case, h_c, contact_share):
+        return None
+    w, s = case.web, case.sigma
+    h_g = float(contact_gap(case.p_bar, w.modulus_thickness, s, w.thickness, "gaussian"))
+    return (f"the asperities carry {100 * contact_share:.1f} % of the wrap load, at gaps "
+            f"where the exponential heights (friction.distribution = \"exponential\", the "
+            f"paper's Eq. 2) put h_c = {h_c * 1e6:.4g} um = {h_c / s:.3g} sigma above the mean "
+            f"plane (E_b sigma / (2 t T_eff/R) = "
+            f"{w.modulus_thickness * s / (2 * w.thickness * case.p_bar):.3g}): beyond "
+            f"{TAIL_SIGMAS:g} sigma no real surface has asperities (a surface's peak-to-valley "
+            "height is about 7 sigma, the paper's newsprint 6.9 sigma), so this contact, and "
+            "the mu and idler margin it gives, come from the law's unending tail, not the "
+            f"surface; the Gaussian heights (friction.distribution = \"gaussian\") put h_c at "
+            f"{h_g * 1e6:.4g} um = {h_g / s:.3g} sigma: solve with them to compare")

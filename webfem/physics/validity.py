@@ -16,6 +16,7 @@ from __future__ import annotations
 from ..errors import NoAdmissibleSolution
 
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
+           "THICK_WEB_RATIO", "COMPRESSION_RATIO", "thick_web_warning",
            "thin_film_message",
            "wrap_length_check", "slip_warning"]
 
@@ -103,3 +104,35 @@ def grooves_refused(case, model: str) -> None:
             f"roller.groove_width = {r.groove_width:g}, roller.groove_depth = "
             f"{r.groove_depth:g} m): use model fe2d or auto, or set roller.groove_width = 0 "
             "for a smooth roller")
+
+
+#: Largest t/(2R) the thin-web geometry takes without a warning: the web's mid-plane runs on
+#: radius R + t/2 while the model puts its tension at the film's surface on radius R, so the
+#: wrap pressure T/R is off by about t/(2R), and the web's outer fibre is strained by t/(2R)
+#: in bending (1 %: the geometry then errs by more than 1 %).
+THICK_WEB_RATIO = 0.01
+#: Largest through-thickness compression, as a share of the web's thickness, the contact
+#: law's linear spring base E_b/t is taken to describe without a warning (a stated choice:
+#: the law is linear in the compression and has no hardening as the web densifies).
+COMPRESSION_RATIO = 0.1
+
+
+def thick_web_warning(case, h_min) -> str | None:
+    """Where the thin-web assumptions fail: the web thick against the roller (t/(2R) above
+    :data:`THICK_WEB_RATIO`) or its surface compressed by more than
+    :data:`COMPRESSION_RATIO` of its thickness (``h_min`` [m] the stated minimum gap, below
+    0 where the web rests compressed). None where both hold."""
+    t, R = case.web.thickness, case.roller.radius
+    parts = []
+    if t / (2.0 * R) > THICK_WEB_RATIO:
+        parts.append(f"web.thickness / (2 roller.radius) = {t / (2.0 * R):.2g} (t = {t:g} m, "
+                     f"R = {R:g} m): the web bends to an outer-fibre strain of "
+                     f"{100 * t / (2.0 * R):.2g} % and its mid-plane runs on radius R + t/2, "
+                     "which the thin-web model (tension at the film's surface, wrap pressure "
+                     "T/R) leaves out: its wrap pressure is off by about that share")
+    if h_min is not None and h_min < 0.0 and -h_min > COMPRESSION_RATIO * t:
+        parts.append(f"the web's surface is compressed by {-h_min:.3g} m, "
+                     f"{100 * -h_min / t:.0f} % of its thickness web.thickness = {t:g} m: "
+                     "the contact law's linear spring base E_b/t has no hardening as the web "
+                     f"densifies (taken to hold below {100 * COMPRESSION_RATIO:.0f} %)")
+    return "; ".join(parts) + "; the answer is outside the model's assumptions" if parts else None
