@@ -175,3 +175,55 @@ def test_tiny_margins_print_as_below_a_thousandth(capsys):
     out = capsys.readouterr().out
     assert not re.search(r"\de-\d", out), out
     assert out.count("< 0.001") >= 4
+
+
+def test_the_tail_rule_reads_the_idlers_own_solve_where_the_web_slides():
+    """An overspeeding roller entrains more air: its own contact share (0.3 %) is below the
+    tail rule's 0.5 %, but the idler's (the second solve at U_r = U_w: 91 %) rests on the
+    exponential law's tail. The verdict is 'unsure' as for the idler solved directly, and
+    the second solve's tail warning is carried (the review found 'would hold' instead)."""
+    from webfem.describe import idler_verdict
+    from webfem.idler import idler_at_web_speed
+
+    case = webfem.load_case("idler").updated({"web.modulus_thickness": 2e7,
+                                               "roller.speed": 40.0})
+    first = webfem.solve(case, model="closed-form")
+    assert first.summary.contact_share < 0.005
+    r = idler_at_web_speed(first, "closed-form")
+    word, said = idler_verdict(r.summary, r.case)
+    assert word == "unsure" and "exponential heights' tail" in said
+    assert r.summary.idler_contact_share > 0.5
+    assert any("exponential heights" in w for w in r.summary.warnings)
+
+
+def test_no_answer_or_a_standing_web_is_not_judged():
+    """A closed-form point with no answer (its margin NaN) read 'idler slips ... can carry
+    nan N/m'; a web standing still was advised to solve at roller.speed = web.speed = 0."""
+    from webfem.describe import idler_verdict
+
+    r = webfem.solve_many([webfem.load_case("idler").updated(
+        {"roller.radius": 0.005, "web.roughness": 2e-4})], model="closed-form")[0]
+    word, said = idler_verdict(r.summary, r.case)
+    assert word == "not judged" and "nan" not in said
+    still = webfem.solve(webfem.load_case("idler").updated({"web.speed": 0.0}),
+                         model="closed-form")
+    word, said = idler_verdict(still.summary, still.case)
+    assert word == "not judged" and "stands still" in said
+
+
+def test_the_effects_table_says_why_its_slip_margin_column_is_missing():
+    from webfem.effects import effects_table
+
+    sliding = effects_table(webfem.load_case("idler").updated({"roller.speed": 0.0}),
+                            "closed-form")
+    assert "slip margin" not in sliding.text().splitlines()[1]
+    assert "slip margin: not judged, the web slides" in sliding.text()
+    held = effects_table(webfem.load_case("idler"), "closed-form")
+    assert held.margin_note is None and "slip margin" in held.text()
+
+
+def test_a_refused_sweep_prints_a_change_to_the_digits_where_it_differs():
+    from webfem.sweeps.store import _shown
+
+    assert (_shown(80.0, 80.0000001), _shown(80.0000001, 80.0)) == ("80", "80.0000001")
+    assert _shown(80.0, 120.0) == "80" and _shown(None) == "(not set)"

@@ -61,3 +61,16 @@ def test_a_users_case_leaving_out_web_material_says_so(tmp_path, capsys):
     assert "leaves out" not in capsys.readouterr().err
     assert main(["solve", "base", "--model", "closed-form"]) == 0   # no density: on purpose
     assert "leaves out" not in capsys.readouterr().err
+
+
+def test_a_copy_of_a_bundled_case_is_not_told_it_leaves_out_its_web(tmp_path):
+    """`webfem init idler` then `webfem solve idler.toml`: the copy's [web] table is the
+    bundled one's, on purpose; only an edited one is a user's own web (the review found the
+    line on every command in a fresh folder)."""
+    from webfem.cli.common import defaults_note
+
+    assert main(["init", "idler", str(tmp_path)]) == 0
+    copy = tmp_path / "idler.toml"
+    assert defaults_note(copy, {}) is None
+    copy.write_text(copy.read_text().replace("[web]\n", "[web]\nthickness = 12e-6\n", 1))
+    assert "5 of the web's 6 material keys" in defaults_note(copy, {})

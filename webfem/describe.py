@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from .physics.contact import TAIL_SIGMAS, beyond_the_surface
 from .physics.effects import margin_range, margin_verdict
 
@@ -128,6 +130,14 @@ def idler_verdict(s, case=None) -> tuple[str, str] | None:
     if s.get("delta_T_required") is None:
         return None
     sliding = case is not None and case.U_slide != 0.0
+    if case is not None and case.web.speed <= 0.0:
+        return "not judged", ("idler check: not judged; the web stands still, so this roller "
+                              "is no idler turning with it (an idler's check needs "
+                              "web.speed > 0)")
+    margin = s.get("slip_margin")
+    if not sliding and (margin is None or math.isnan(margin)):
+        return "not judged", (f"idler check: not judged; this solve has no answer to judge it "
+                              f"by (needs {small_text(s.delta_T_required, '.3g')} N/m)")
     need = f"needs {small_text(s.delta_T_required, '.3g')} N/m"
     if sliding:
         basis = s.get("idler_basis")
@@ -153,8 +163,9 @@ def idler_verdict(s, case=None) -> tuple[str, str] | None:
                               f"{small_text(s.slip_margin)}, but mu's stated error allows "
                               f"{small_text(low)} to {small_text(high)} ({need}, {carry}); "
                               "a finer model decides")
+    share = s.get("idler_contact_share") if sliding else s.contact_share
     if (s.slip_margin >= 1.0 and case is not None
-            and beyond_the_surface(case, s.h_c, s.contact_share)):
+            and beyond_the_surface(case, s.h_c, share)):
         # the margin rests on asperities the exponential law puts above any real surface
         return "unsure", (f"{head}{'be ' if sliding else ''}unsure: margin "
                           f"{small_text(s.slip_margin)} ({need}, {carry}), but only by the "

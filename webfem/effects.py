@@ -94,6 +94,10 @@ class EffectsTable:
     #: The full answer's stated errors (``error_h_center``, ``error_h_min``, ``error_mu``):
     #: a change below them is within what the model can tell apart.
     errors: dict | None = None
+    #: Why the slip margin column is missing though the case states an idler load (the web
+    #: slides: no model judges an idler from a sliding film; None where it is shown or
+    #: no load is stated).
+    margin_note: str | None = None
 
     def to_dict(self) -> dict:
         return {"model": self.model, "rows": [r.to_dict() for r in self.rows],
@@ -132,6 +136,8 @@ class EffectsTable:
                 + " (a smaller change is within them)")
         if self.not_carried:
             lines.append(f"  ({', '.join(self.not_carried)}: not carried by {self.model})")
+        if self.margin_note:
+            lines.append(f"  ({self.margin_note})")
         return "\n".join(lines)
 
 
@@ -176,8 +182,12 @@ def effects_table(case: Case, model: str = "fe2d", options=None, progress=None,
     missing = tuple(e for e in effects if e not in carried)
     errors = {f"error_{q}": base.summary.get(f"error_{q}")
               for q in ("h_center", "h_min", "mu")}
+    note = ("slip margin: not judged, the web slides on the roller (an idler turns with it): "
+            "`webfem idler`, or `webfem solve` at roller.speed = web.speed, judges it"
+            if base.summary.get("delta_T_required") is not None
+            and base.summary.get("slip_margin") is None else None)
     return EffectsTable(model, tuple(rows), missing, asked=asked,
-                        why=why if asked != model else None, errors=errors)
+                        why=why if asked != model else None, errors=errors, margin_note=note)
 
 
 def _margin(value) -> str:

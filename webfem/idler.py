@@ -25,6 +25,7 @@ from .api import solve_along
 from .case import Case
 from .errors import ConvergenceError, InputError, ValidityWarning
 from .line_speed import at_speed
+from .physics.contact import tail_warning
 from .physics.effects import margin_range, margin_verdict, states_load
 
 __all__ = ["MarginCurve", "margin_curve", "idler_at_web_speed"]
@@ -199,6 +200,10 @@ def idler_at_web_speed(result, model: str = "auto", options=None):
         basis = f"the second {model} solve at {speed} found no answer ({err})"
         return dataclasses.replace(result, summary=s.replace(idler_basis=basis))
     basis = f"a second {other.model_used or other.model} solve at {speed}"
+    # the second solve's warning of contact from the exponential law's tail is the idler's
+    tail = tail_warning(case, other.h_c, other.contact_share)
+    said = s.warnings + ((tail,) if tail and tail not in s.warnings else ())
     return dataclasses.replace(result, summary=s.replace(
         delta_T_available=other.delta_T_available, slip_margin=other.slip_margin,
-        mu_onset=other.mu_onset, error_mu_onset=other.error_mu, idler_basis=basis))
+        mu_onset=other.mu_onset, error_mu_onset=other.error_mu, idler_basis=basis,
+        idler_contact_share=other.contact_share, warnings=said))

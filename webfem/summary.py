@@ -140,6 +140,9 @@ class Summary(ReadOnlyMapping):
     #: and ``error_mu_onset`` is its stated error of mu (as ``error_mu``).
     idler_basis: str | None = None
     error_mu_onset: float | None = None
+    #: that second solve's contact share (the verdict's tail rule reads it: an overspeeding
+    #: roller entrains more air, so the sliding solve's own share says nothing of the idler's)
+    idler_contact_share: float | None = None
     #: Where nothing slides (U_s = 0): the film's own traction at the stated speeds, its
     #: pressure-driven drag -(h/2) dp/dx averaged over the wrap (tiny, of either sign) and
     #: the belt formula's delta_T for it [N/m]; None where something slides (then ``mu`` and

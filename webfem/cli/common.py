@@ -97,16 +97,22 @@ WEB_MATERIAL = ("thickness", "modulus_thickness", "modulus_md", "roughness", "pe
 def defaults_note(path, overrides_: dict) -> str | None:
     """One line naming the web material keys (:data:`WEB_MATERIAL`) a user's case file
     at ``path`` leaves out (and ``--set`` does not give), with the base case's values it
-    then takes; None for a bundled case (each states what it leaves out, on purpose) or
-    a file that gives them all."""
+    then takes; None for a bundled case (each states what it leaves out, on purpose), a
+    copy of one whose [web] table is unchanged (`webfem init`), or a file that gives them
+    all."""
     from ..bundled import bundled_cases
     from ..case import read_toml
     from ..keys import key_unit
     path = Path(path)
     try:
-        if path.resolve() in {p.resolve() for p in bundled_cases().values()}:
+        bundled = bundled_cases().values()
+        if path.resolve() in {p.resolve() for p in bundled}:
             return None
         web = read_toml(path)[0].get("web", {})
+        # a copy of a bundled case (`webfem init`) keeps that case's web, on purpose; only
+        # a [web] table edited away from every bundled one is a user's own web
+        if any(web == read_toml(p)[0].get("web", {}) for p in bundled):
+            return None
     except (InputError, OSError):
         return None
     missing = [k for k in WEB_MATERIAL if k not in web and f"web.{k}" not in overrides_]

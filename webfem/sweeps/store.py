@@ -110,7 +110,7 @@ def _case_changes(old, new, prefix: str = "", most: int = 3) -> str:
     'web.tension 80 -> 120'
     """
     changes = _changed_keys(old, new, prefix)
-    text = "; ".join(f"{key} {_shown(a)} -> {_shown(b)}" for key, a, b in changes[:most])
+    text = "; ".join(f"{key} {_shown(a, b)} -> {_shown(b, a)}" for key, a, b in changes[:most])
     return text + (f"; and {len(changes) - most} more" if len(changes) > most else "")
 
 
@@ -126,10 +126,16 @@ def _changed_keys(old, new, prefix: str) -> list[tuple[str, object, object]]:
     return [] if old == new else [(prefix.rstrip("."), old, new)]
 
 
-def _shown(value) -> str:
+def _shown(value, other=None) -> str:
+    """``value`` as a refusal prints it: a float to as many digits as it takes to differ
+    from ``other`` (80 -> 80.0000001, not 80 -> 80)."""
     if value is None:
         return "(not set)"
-    return f"{value:g}" if isinstance(value, float) else str(value)
+    if not isinstance(value, float):
+        return str(value)
+    digits = next((d for d in range(6, 18) if not isinstance(other, float)
+                   or f"{value:.{d}g}" != f"{other:.{d}g}"), 17)
+    return f"{value:.{digits}g}"
 
 
 def _same_case(old, new) -> bool:
