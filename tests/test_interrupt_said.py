@@ -126,14 +126,20 @@ def test_groove_map_interrupted_then_resumed_says_so(capsys, monkeypatch, tmp_pa
     assert len(made) == 4
 
 
-def test_groove_loss_speeds_interrupted_say_the_geometries_saved(capsys, monkeypatch,
-                                                                  tmp_path):
+def _designs_answer_at_once(monkeypatch):
+    """Every groove design answers at once (a fake solve): the tests interrupt what follows."""
     monkeypatch.setattr(gs, "solve", lambda case, model, options: {
         "mu": 0.3, "h_center": 1e-6, "contact_share": 0.5})
 
-    def loss(*args, **kwargs):
-        raise KeyboardInterrupt
-    monkeypatch.setattr(gs, "traction_loss_speed", loss)
+
+def _ctrl_c(*args, **kwargs):
+    raise KeyboardInterrupt
+
+
+def test_groove_loss_speeds_interrupted_say_the_geometries_saved(capsys, monkeypatch,
+                                                                  tmp_path):
+    _designs_answer_at_once(monkeypatch)
+    monkeypatch.setattr(gs, "traction_loss_speed", _ctrl_c)
     assert main(GROOVES + ["--loss-speed", "--loss-pitches", "0.005", "--loss-lands", "0.5",
                            "--out", str(tmp_path)]) == 130
     assert capsys.readouterr().err.strip().splitlines()[-1] == (
@@ -143,12 +149,8 @@ def test_groove_loss_speeds_interrupted_say_the_geometries_saved(capsys, monkeyp
 
 def test_ctrl_c_while_the_map_is_drawn_says_every_design_is_saved(capsys, monkeypatch,
                                                                   tmp_path):
-    monkeypatch.setattr(gs, "solve", lambda case, model, options: {
-        "mu": 0.3, "h_center": 1e-6, "contact_share": 0.5})
-
-    def stop(*args, **kwargs):
-        raise KeyboardInterrupt
-    monkeypatch.setattr("webfem.io.groove_charts.groove_chart", stop)
+    _designs_answer_at_once(monkeypatch)
+    monkeypatch.setattr("webfem.io.groove_charts.groove_chart", _ctrl_c)
     assert main(GROOVES + ["--out", str(tmp_path)]) == 130
     assert capsys.readouterr().err.strip().splitlines()[-1] == (
         f"webfem: interrupted: 3 of 3 designs saved in {tmp_path / 'base_grooves.csv'}; "
