@@ -134,11 +134,11 @@ def idler_verdict(s, case=None) -> tuple[str, str] | None:
         return "not judged", ("idler check: not judged; the web stands still, so this roller "
                               "is no idler turning with it (an idler's check needs "
                               "web.speed > 0)")
+    need = f"needs {small_text(s.delta_T_required, '.3g')} N/m"
     margin = s.get("slip_margin")
     if not sliding and (margin is None or math.isnan(margin)):
-        return "not judged", (f"idler check: not judged; this solve has no answer to judge it "
-                              f"by (needs {small_text(s.delta_T_required, '.3g')} N/m)")
-    need = f"needs {small_text(s.delta_T_required, '.3g')} N/m"
+        return "not judged", ("idler check: not judged; this solve has no answer to judge "
+                              f"it by ({need})")
     if sliding:
         basis = s.get("idler_basis")
         head = (f"idler check at the onset of slip (U_r = U_w; here the web slides at U_s = "

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .api import solve_along
+from .api import solve, solve_along
 from .case import Case
 from .errors import ConvergenceError, InputError, ValidityWarning
 from .line_speed import at_speed
@@ -185,8 +185,6 @@ def idler_at_web_speed(result, model: str = "auto", options=None):
     Result
         ``result`` itself, or a copy with the summary's idler keys filled.
     """
-    from .api import solve
-
     case, s = result.case, result.summary
     if case.U_slide == 0.0 or not states_load(case) or case.web.speed <= 0.0:
         return result

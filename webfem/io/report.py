@@ -247,12 +247,17 @@ def _computed(result, version: str) -> str:
     return _table(("", "value", "unit", "note"), rows)
 
 
+def _sentence(text: str) -> str:
+    """``text`` with its first letter a capital, as a sentence of the page."""
+    return text[:1].upper() + text[1:]
+
+
 def page_warnings(result) -> list[str]:
     """The warnings the page lists: the solve's, and the idler's verdict where it slips, is
     unsure or cannot be judged (:func:`webfem.describe.idler_verdict`, the sentence
     ``webfem solve`` prints)."""
     said = idler_verdict(result.summary, result.case)
-    idler = [said[1][0].upper() + said[1][1:]] if said and said[0] != "holds" else []
+    idler = [_sentence(said[1])] if said and said[0] != "holds" else []
     return idler + list(result.summary.warnings)
 
 
@@ -264,7 +269,7 @@ def _idler_headline(result) -> str:
         return ""
     word, text = said
     shown = (f"<b>Idler slip check: {escape(word.upper())}.</b> "
-             f"{escape(text[0].upper() + text[1:])}.")
+             f"{escape(_sentence(text))}.")
     return (f'<p class="ok" id="idler">{shown}</p>' if word == "holds" else
             f'<div class="warn" id="idler">{shown}</div>')
 
@@ -280,7 +285,7 @@ def report_html(result, *, title: str = "", pictures=(), version: str = "",
     rests = _in_units(resting_text(s) or "", units)
     # a negative gap is an answer, not a warning, but the page must say why it is negative
     # wherever a reader meets it: the heading, the summary table and this section
-    note = f"<p>Note: {escape(rests[0].upper() + rests[1:])}.</p>" if rests else ""
+    note = f"<p>Note: {escape(_sentence(rests))}.</p>" if rests else ""
     warn = note + ("".join(f'<div class="warn">{escape(w)}</div>'
                            for w in page_warnings(result))
                    or '<p class="ok">No warnings.</p>')

@@ -40,11 +40,10 @@ import numpy as np
 from ..case import Case
 from ..cores import usable_cores
 from ..errors import NoAdmissibleSolution
-from ..physics.contact import REGIMES, contact_gap, contact_pressure
+from ..physics.contact import REGIMES, contact_gap, contact_pressure, tail_warning
 from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result, refused
-from ..physics.contact import tail_warning
 from ..summary import Summary
 from . import fit_groups as fg
 from .fit_file import read_fit
