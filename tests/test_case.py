@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from webfem import Case, InputError, load_case, load_sweep
@@ -250,3 +251,43 @@ def test_unknown_table_suggests_a_section(tmp_path):
     p.write_text("[webb]\nwidth = 0.03\n")
     with pytest.raises(InputError, match="unknown section 'webb' in .*c.toml; did you mean 'web'"):
         load_case(p)
+
+
+def test_no_mean_free_path_through_the_roughness_is_refused_naming_both_keys():
+    """Without a mean free path nothing cuts off the air's shear between the asperities at
+    contact (physics.md, "Air through the roughness"): mu would be infinite for every model,
+    and fe1d/fe2d once returned mu = nan as converged."""
+    with pytest.raises(InputError) as err:
+        Case().updated({"air.mean_free_path": 0.0})
+    text = str(err.value)
+    assert "air.mean_free_path = 0 m" in text and "air.roughness_flow" in text
+    assert "valid: air.mean_free_path > 0 m" in text
+    # the paper's Couette shear has its own floor: still a case
+    assert Case().updated({"air.mean_free_path": 0.0, "air.roughness_flow": "none"})
+    assert Case().updated({"air.mean_free_path": 0.0, "model.physics": "paper"})
+
+
+def test_overrides_that_mend_a_case_file_apply(tmp_path):
+    """A --set that makes a file's case valid must be applied, not refused with the file's
+    own error; a bad override still names itself, not the file."""
+    path = tmp_path / "c.toml"
+    path.write_text('[air]\nmean_free_path = 0.0\n')
+    with pytest.raises(InputError, match="air.mean_free_path = 0 m"):
+        load_case(path)
+    case = load_case(path, {"air.roughness_flow": "none"})
+    assert case.air.mean_free_path == 0.0 and case.air.roughness_flow == "none"
+    with pytest.raises(InputError) as err:
+        load_case(tmp_path / "c.toml", {"air.roughness_flow": "none", "web.tension": -1.0})
+    assert "web.tension" in str(err.value) and "c.toml" not in str(err.value)
+    # the file's own fault, with a harmless override, still names the file
+    with pytest.raises(InputError, match="c.toml"):
+        load_case(path, {"roller.speed": 5.0})
+
+
+def test_the_valley_shear_bound_without_a_cut_off_is_infinite_and_silent():
+    import warnings
+
+    from webfem.physics.friction import valley_shear_bound
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert valley_shear_bound(4e-6, 0.0) == np.inf

@@ -94,6 +94,15 @@ class Case:
         if self.roller.speed + self.web.speed <= 0.0:
             raise InputError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
                             "[m/s] (no air is entrained otherwise)")
+        if self.air.mean_free_path == 0.0 and self.roughness_flow_model == "mean-gap":
+            # the air sheared between the asperities is cut off at contact only at the
+            # molecular scale 2 a lambda: without it the mean Couette shear diverges
+            raise InputError(
+                "air.mean_free_path = 0 m with air.roughness_flow = mean-gap: the air "
+                "sheared between the asperities then has no molecular cut-off and its shear "
+                "(so mu) is infinite; valid: air.mean_free_path > 0 m (6.5e-08 m at 1 atm, "
+                "at most 0.0001 m), or air.roughness_flow = none (the film gap h with a "
+                "numerical floor) or model.physics = paper")
         if self.tension_eff <= 0.0:
             w = self.web
             raise InputError(
@@ -340,8 +349,21 @@ def case_from_tables(data: Mapping[str, Any], where: str,
     ``[[series]]`` are left to :func:`webfem.sweepspec.load_sweep`), with ``overrides``
     (dotted keys) applied; ``where`` (" in FILE") ends the messages."""
     tables = {k: v for k, v in data.items() if k not in ("sweep", "series")}
-    case = Case.from_dict(tables, where)
-    return case.updated(overrides) if overrides else case
+    if overrides:
+        # the checks across keys (e.g. the mean free path against the roughness flow) must
+        # see the overrides, or a --set that mends the file's case could never be applied
+        try:
+            return Case.from_dict({**flatten(tables, where), **resolve_aliases(overrides)})
+        except InputError as err:
+            final = err
+        try:
+            case = Case.from_dict(tables, where)
+        except InputError as err:
+            if str(err).startswith(str(final)):   # the file's own fault: name the file
+                raise
+            raise final from None
+        return case.updated(overrides)
+    return Case.from_dict(tables, where)
 
 
 def load_case(path: str | Path, overrides: Mapping[str, Any] | None = None) -> Case:

@@ -126,13 +126,6 @@ def no_answer_reason(code: int, case: Case, s: dict) -> str:
             return ("the wrap-averaged mu is not finite: the Eq. 21 gap closes where the "
                     "Couette shear has no floor (air.roughness_flow = none); use the default "
                     "roughness flow or fe1d or fe2d")
-        if case.air.mean_free_path == 0.0:
-            # through the roughness the shear's singularity at contact is cut off at 2 a
-            # lambda; without a mean free path nothing cuts it off
-            return ("the wrap-averaged mu is not finite: the air sheared between the "
-                    "asperities has no molecular cut-off (air.mean_free_path = 0 m with "
-                    "air.roughness_flow = mean-gap; valid: > 0, 6.5e-08 m at 1 atm); set the "
-                    "mean free path or use fe1d or fe2d")
         # only what the case states can be named, never a key it left at its default
         return (f"the wrap-averaged mu is not finite (h_c = {s['h_c']:.3g} m, Eq. 21's "
                 f"outlet gap {s['h_outlet']:.3g} m): use fe1d or fe2d")

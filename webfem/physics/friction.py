@@ -208,7 +208,8 @@ def valley_shear_bound(sigma, mean_free_path):
     2.029
     """
     cutoff = 2.0 * SLIP_COEFFICIENT * np.asarray(mean_free_path, float)
-    return 0.5 * np.log1p(np.asarray(sigma, float) / cutoff) + 0.3
+    with np.errstate(divide="ignore"):    # no cut-off (lambda = 0): no bound, inf
+        return 0.5 * np.log1p(np.asarray(sigma, float) / cutoff) + 0.3
 
 
 _EULER_GAMMA = 0.5772156649015329
