@@ -33,3 +33,21 @@ def test_the_base_case_is_not_warned(capsys):
 def test_the_edges(radius, h_min, warned):
     case = BASE.updated({"roller.radius": radius})
     assert (thick_web_warning(case, h_min) is not None) is warned
+
+
+@pytest.mark.parametrize("factor, refused", [(0.99, False), (1.01, True)])
+def test_a_web_too_thick_to_bend_round_its_roller_is_refused(factor, refused):
+    """A 5 mm web on a 2 mm roller was answered "fe1d, stated error 0.0018", its own warning
+    saying the wrap pressure was 125 % off; beyond t/(2R) = THICK_WEB_LIMIT no answer is
+    given, for any model."""
+    from webfem import InputError
+    from webfem.physics.validity import THICK_WEB_LIMIT
+    values = {"roller.radius": 0.01, "web.thickness": factor * 2 * THICK_WEB_LIMIT * 0.01}
+    if not refused:
+        assert BASE.updated(values).web.thickness == values["web.thickness"]
+        return
+    with pytest.raises(InputError) as err:
+        BASE.updated(values)
+    text = str(err.value)
+    assert "web.thickness = 0.00202 m on roller.radius = 0.01 m" in text
+    assert f"valid: t/(2R) <= {THICK_WEB_LIMIT:g}" in text and "web.thickness <= 0.002 m" in text

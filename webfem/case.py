@@ -35,6 +35,7 @@ from typing import Any, Mapping
 
 from .errors import CaseError, InputError, show  # CaseError: InputError's old name, for users
 from .keys import flatten, is_key, unknown_key, valid_keys
+from .physics.validity import THICK_WEB_LIMIT
 from .sections import ALIASES, SECTIONS, Air, Friction, Model, Roller, Web, Wrap, resolve_aliases
 
 __all__ = [
@@ -94,6 +95,15 @@ class Case:
         if self.roller.speed + self.web.speed <= 0.0:
             raise InputError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
                             "[m/s] (no air is entrained otherwise)")
+        t, R = self.web.thickness, self.roller.radius
+        if t / (2.0 * R) > THICK_WEB_LIMIT:
+            raise InputError(
+                f"web.thickness = {t:g} m on roller.radius = {R:g} m: t/(2R) = {t / (2 * R):.3g}"
+                f", the web would bend to an outer-fibre strain of {100 * t / (2 * R):.3g} % "
+                "and the thin-web model (its tension at the film's surface, wrap pressure "
+                f"T/R) is off by as much; valid: t/(2R) <= {THICK_WEB_LIMIT:g}, "
+                f"web.thickness <= {2 * THICK_WEB_LIMIT * R:.3g} m on this roller or "
+                f"roller.radius >= {t / (2 * THICK_WEB_LIMIT):.3g} m for this web")
         if self.air.mean_free_path == 0.0 and self.roughness_flow_model == "mean-gap":
             # the air sheared between the asperities is cut off at contact only at the
             # molecular scale 2 a lambda: without it the mean Couette shear diverges

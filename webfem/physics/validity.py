@@ -16,7 +16,7 @@ from __future__ import annotations
 from ..errors import NoAdmissibleSolution
 
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
-           "THICK_WEB_RATIO", "COMPRESSION_RATIO", "thick_web_warning",
+           "THICK_WEB_RATIO", "THICK_WEB_LIMIT", "COMPRESSION_RATIO", "thick_web_warning",
            "thin_film_message",
            "wrap_length_check", "slip_warning"]
 
@@ -111,6 +111,10 @@ def grooves_refused(case, model: str) -> None:
 #: wrap pressure T/R is off by about t/(2R), and the web's outer fibre is strained by t/(2R)
 #: in bending (1 %: the geometry then errs by more than 1 %).
 THICK_WEB_RATIO = 0.01
+#: Largest t/(2R) webfem solves at all: beyond it the web's outer fibre would be strained by
+#: more than 10 % in bending and the thin-web wrap pressure T/R is off by as much (a stated
+#: choice: no paper, film or foil bends that far elastically).
+THICK_WEB_LIMIT = 0.1
 #: Largest through-thickness compression, as a share of the web's thickness, the contact
 #: law's linear spring base E_b/t is taken to describe without a warning (a stated choice:
 #: the law is linear in the compression and has no hardening as the web densifies).
