@@ -33,3 +33,20 @@ def test_one_refused_point_loses_no_other_answer(model):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             webfem.solve(CRUSHED, model=model)
+
+
+@pytest.mark.parametrize("model", ["closed-form", "fe1d"])
+def test_a_grooved_point_is_refused_in_place_by_the_smooth_roller_models(model):
+    """A grooved roller is a valid point the closed form and fe1d cannot solve: solve_many
+    kept none of a batch holding one (an InputError for all); now it is refused in place."""
+    grooved = webfem.load_case("base_grooved")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        many = webfem.solve_many([BASE, grooved], model=model)
+        alone = webfem.solve(BASE, model=model)
+    assert [r["converged"] for r in many] == [True, False]
+    assert "cannot solve a grooved roller" in many[1]["solver_message"]
+    assert math.isnan(many[1]["mu"])
+    assert many[0]["mu"] == pytest.approx(alone["mu"], rel=1e-9)
+    with pytest.raises(webfem.InputError, match="cannot solve a grooved roller"):
+        webfem.solve(grooved, model=model)

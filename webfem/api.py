@@ -27,6 +27,7 @@ from .sweepspec import Sweep, load_sweep
 from .errors import ConvergenceError, NoAdmissibleSolution, ValidityWarning
 from .models.options import Options
 from .models.registry import MODELS, make_options, model_spec
+from .physics.validity import grooves_text
 from .result import Result, refused
 
 __all__ = ["MODELS", "solve", "solve_along", "solve_many", "sweep"]
@@ -109,6 +110,10 @@ def solve_along(cases: Iterable[Case], model: str = "auto", options=None, *,
         yield result
 
 
+#: The models that cannot solve a grooved roller, as their refusals name them.
+GROOVES_REFUSED = {"closed-form": "the closed form", "fe1d": "fe1d"}
+
+
 def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
                **values) -> list[Result]:
     """Solve many cases at once: the closed form and the fitted model evaluate every point
@@ -123,8 +128,9 @@ def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
     its numbers NaN (:func:`webfem.result.refused`; the closed form the same), so one
     refused point does not lose the others' answers. An FE point that did not converge
     comes back as its last iterate (``converged = False``, numbers kept for inspection, as
-    ``ConvergenceError.result`` holds it). Input errors (an unknown option, a case that does
-    not exist) still raise.
+    ``ConvergenceError.result`` holds it). A grooved roller given to the closed form or
+    fe1d, which solve smooth rollers only, is such a refused point. Input errors (an unknown
+    option, a case that does not exist) still raise.
 
     >>> rs = solve_many([Case().updated({"roller.speed": u}) for u in (20.0, 30.0)],
     ...                 model="closed-form")
@@ -133,6 +139,16 @@ def solve_many(cases: Iterable[Case], model: str = "auto", options=None,
     """
     # what solve takes, every model: a Case, a case file or a bundled case's name
     cases = [as_case(c) for c in cases]
+    if model in GROOVES_REFUSED and any(c.grooved for c in cases):
+        # a grooved roller is a valid point these models cannot solve: refused in place
+        make_options(model, options, **values)
+        smooth = [i for i, c in enumerate(cases) if not c.grooved]
+        out = [refused(c, model, grooves_text(c, GROOVES_REFUSED[model])) if c.grooved
+               else None for c in cases]
+        for i, r in zip(smooth, solve_many([cases[i] for i in smooth], model, options,
+                                           **values) if smooth else ()):
+            out[i] = r
+        return out  # type: ignore[return-value]
     if model == "closed-form":
         from .models.closed import solve_many as closed_many
         make_options(model, options, **values)          # checked, though none apply

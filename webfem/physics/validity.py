@@ -92,18 +92,25 @@ def slip_warning(case, h_min: float) -> str | None:
 GROOVE_KEYS = ("roller.groove_pitch", "roller.groove_width", "roller.groove_depth")
 
 
-def grooves_refused(case, model: str) -> None:
-    """An :class:`~webfem.errors.InputError` when ``case`` has a grooved roller, which only
-    the 2-D film model (fe2d) solves."""
-    if case.grooved:
-        from ..errors import InputError
-
-        r = case.roller
-        raise InputError(
-            f"{model} cannot solve a grooved roller (roller.groove_pitch = {r.groove_pitch:g}, "
+def grooves_text(case, model: str) -> str | None:
+    """Why ``model`` (as messages name it) cannot solve ``case``: a grooved roller, which only
+    the 2-D film model (fe2d) solves; None for a smooth roller."""
+    if not case.grooved:
+        return None
+    r = case.roller
+    return (f"{model} cannot solve a grooved roller (roller.groove_pitch = {r.groove_pitch:g}, "
             f"roller.groove_width = {r.groove_width:g}, roller.groove_depth = "
             f"{r.groove_depth:g} m): use model fe2d or auto, or set roller.groove_width = 0 "
             "for a smooth roller")
+
+
+def grooves_refused(case, model: str) -> None:
+    """An :class:`~webfem.errors.InputError` when ``case`` has a grooved roller
+    (:func:`grooves_text`)."""
+    text = grooves_text(case, model)
+    if text:
+        from ..errors import InputError
+        raise InputError(text)
 
 
 #: Largest t/(2R) the thin-web geometry takes without a warning: the web's mid-plane runs on
