@@ -14,7 +14,8 @@ linearisation in ln p, which never reaches below 0); where the linear one (``ci9
 half width) would reach below 0 the constant is not determined by the data and a note says
 so (a 5-row newsprint rig fitted C = 0.19 +- 1.56 m/s). A constant the data cannot identify
 (the predictions do not change with it, or change only together with another constant, e.g.
-C without rows sliding within a few C) is reported with no interval and a note saying why.
+C without rows at several sliding speeds within a few C) is reported with no interval and a
+note saying why.
 
 Examples
 --------
@@ -63,9 +64,10 @@ MEASURED = {"delta_T": "tension increase before slip [N/m]", "mu": "friction coe
 _UNITS = {"mu_cc": "", "speed_constant": " m/s", "sigma": " m"}
 #: How to make the data identify each constant.
 _HINTS = {"mu_cc": "rows where asperity contact carries load (low speeds)",
-          "speed_constant": "rows in boundary or mixed lubrication whose sliding speed U_s = "
-                            "|U_r - U_w| is within a few C (Eq. 29's (2/pi) mu_cc atan(U_s/C) "
-                            "is flat where U_s >> C: rows at more high speeds do not help)",
+          "speed_constant": "rows at several sliding speeds U_s = |U_r - U_w| within a few C, "
+                            "in boundary or mixed lubrication (Eq. 29's (2/pi) mu_cc "
+                            "atan(U_s/C) is flat where U_s >> C: rows at more high speeds do "
+                            "not help)",
           "sigma": "rows in mixed lubrication at several speeds or tensions"}
 
 
