@@ -91,7 +91,11 @@ class Case:
     def __post_init__(self):
         for name, cls in SECTIONS.items():
             if not isinstance(getattr(self, name), cls):
-                raise InputError(f"Case.{name} must be a webfem.case.{cls.__name__}")
+                got = type(getattr(self, name)).__name__
+                raise InputError(
+                    f"Case.{name} must be a webfem.case.{cls.__name__}, not a {got}: build a "
+                    f"case from tables with Case.from_dict({{'{name}': {{...}}}}) or change "
+                    f"keys with Case().updated({{'{name}.KEY': value}})")
         if self.roller.speed + self.web.speed <= 0.0:
             raise InputError("roller.speed = 0 and web.speed = 0: at least one speed must be > 0 "
                             "[m/s] (no air is entrained otherwise)")

@@ -52,7 +52,10 @@ def _floats(name: str, text: str) -> list[float]:
         if not (0.0 < value < 1.0 if key is None else 0.0 < value <= hi):
             unit = "" if key is None else " m"
             shown = item if value == _number(item) else f"{item} = {value:g}{unit}"
-            raise InputError(f"{flag} = {text!r}: {shown} is out of range; give {what}")
+            # a bare number read in metres that would fit in millimetres: a unit forgotten
+            meant = (f" (a bare number is metres: '{item} mm'?)" if key is not None
+                     and value == _number(item) and 0.0 < value * 1e-3 <= hi else "")
+            raise InputError(f"{flag} = {text!r}: {shown} is out of range{meant}; give {what}")
         values.append(value)
     if not values:
         raise InputError(f"{flag} = {text!r}: give at least one value: {what}")
