@@ -155,7 +155,8 @@ def _density(z, sigma, distribution):
     return np.exp(-0.5 * (z / sigma) ** 2) / (sigma * _SQ2PI)
 
 
-#: Gauss-Legendre points of each piece of :func:`shear_factor`'s integral.
+#: Gauss-Legendre points of each piece of :func:`shear_factor`'s integral (the Gaussian
+#: heights'; :func:`_shear_factor` takes the exponential too, the closed form's check).
 _NODES = np.polynomial.legendre.leggauss(40)
 #: The heights beyond which the densities are negligible, in units of sigma (exp(-40) and
 #: exp(-12.5^2 / 2) of the peak).
