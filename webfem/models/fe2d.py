@@ -166,9 +166,14 @@ LINES_KEPT = 3
 #: The residual tolerance of the 1-D solve that starts a cold smooth-roller 2-D solve whose
 #: mesh is decided up front (:meth:`_Film._coarse_first`): the 2-D solve's 1e-9. Looser
 #: (1e-6) saved the last 1-D step on the base case (16 -> 15 iterations, the same mesh) but
-#: sent board idlers of the envelope benchmark (#38: 3.7 -> 5.2 s CPU, the same answer
-#: mesh) through the safe start and the 1-D continuation path twice; at 1e-2 the misfit
-#: rule bisected other cells (10,777 -> 11,161 unknowns).
+#: made board idlers of the envelope benchmark 1.3-1.5x slower (#38: 3.7 -> 5.2 s CPU, the
+#: same answer mesh). Why: their direct 1-D Newton fails, and the 1-D problem keeps one
+#: Eshel-Elrod continuation path, keyed by its tolerance (:meth:`webfem.models.line.
+#: FoilBearing1D.solve_continued`); at 1e-9 this start and the safe start that checks the
+#: resting 2-D answer both reuse the path auto's fe1d solve ran, at 1e-6 this start runs
+#: its own and evicts that one, so the check runs it again (#38 under auto: 563 -> 1,343
+#: factorisations). At 1e-2 the misfit rule bisected other cells (10,777 -> 11,161
+#: unknowns).
 LINE_START_TOL = 1e-9
 
 

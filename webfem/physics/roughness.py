@@ -31,7 +31,7 @@ Examples
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erfc, erfcx
+from scipy.special import erfc, erfcx, exp1, expi
 
 __all__ = ["mean_excess", "mean_gap", "wet_share", "shear_factor", "log_mean_excess",
            "DENSITIES"]
@@ -155,7 +155,8 @@ def _density(z, sigma, distribution):
     return np.exp(-0.5 * (z / sigma) ** 2) / (sigma * _SQ2PI)
 
 
-#: Gauss-Legendre points of each piece of :func:`shear_factor`'s integral.
+#: Gauss-Legendre points of each piece of :func:`shear_factor`'s integral (the Gaussian
+#: heights'; :func:`_shear_factor` takes the exponential too, the closed form's check).
 _NODES = np.polynomial.legendre.leggauss(40)
 #: The heights beyond which the densities are negligible, in units of sigma (exp(-40) and
 #: exp(-12.5^2 / 2) of the peak).
@@ -167,11 +168,14 @@ _BLOCK = 2048
 def shear_factor(h, sigma, slip_length, distribution: str = "exponential"):
     """E[1 / ((h - z) + l); z < h] [1/m for h in m]: the mean Couette shear over eta U_s.
 
-    With y = h - z (the local gap) and u = ln(y + l), dy / (y + l) = du: the integral of the
-    density over u, smooth even where the gap closes (y -> 0). Gauss-Legendre in u on two
-    pieces, split where z = 0 (the exponential density's kink), over the heights where the
-    density is not negligible. ``slip_length`` l > 0 (2 a lambda)."""
+    Exponential heights: in closed form (:func:`_exponential_shear`, exponential integrals
+    scaled so that no gap overflows them). Gaussian heights: with y = h - z (the local gap)
+    and u = ln(y + l), dy / (y + l) = du, the integral of the density over u, smooth even
+    where the gap closes (y -> 0): Gauss-Legendre in u over the heights where the density
+    is not negligible. ``slip_length`` l > 0 (2 a lambda)."""
     _check(distribution)
+    if distribution == "exponential":
+        return _exponential_shear(*(np.asarray(v, float) for v in (h, sigma, slip_length)))
     h, sigma, ell = np.broadcast_arrays(*(np.asarray(v, float) for v in
                                           (h, sigma, slip_length)))
     if h.size <= _BLOCK:
@@ -184,6 +188,51 @@ def shear_factor(h, sigma, slip_length, distribution: str = "exponential"):
         out[i:i + _BLOCK] = _shear_factor(h[i:i + _BLOCK], sigma[i:i + _BLOCK],
                                           ell[i:i + _BLOCK], distribution)
     return out.reshape(shape)
+
+
+#: Above this argument the scaled exponential integrals come from their asymptotic series
+#: (exp(a) overflows past 709); the series' 12 terms leave 12!/600^12 (2e-25) relative.
+_SCALED_FROM = 600.0
+#: k! for the asymptotic series: e^a E1(a) ~ sum (-1)^k k!/a^(k+1), e^-a Ei(a) ~ sum k!/a^(k+1)
+_FACTORIALS = np.cumprod(np.concatenate([[1.0], np.arange(1.0, 12.0)]))
+
+
+def _scaled_integrals(a):
+    """(e^a E1(a), e^-a Ei(a)) for a > 0, finite however large a is."""
+    far = a > _SCALED_FROM
+    near = np.where(far, 1.0, a)
+    with np.errstate(over="ignore", under="ignore"):
+        e1, ei = np.exp(near) * exp1(near), np.exp(-near) * expi(near)
+    if np.any(far):
+        y = 1.0 / np.where(far, a, 1.0)
+        terms = _FACTORIALS[:, None] * y ** np.arange(1, _FACTORIALS.size + 1)[:, None]
+        signs = (-1.0) ** np.arange(_FACTORIALS.size)[:, None]
+        # the smallest terms first
+        e1 = np.where(far, np.sum((signs * terms)[::-1], axis=0).reshape(a.shape), e1)
+        ei = np.where(far, np.sum(terms[::-1], axis=0).reshape(a.shape), ei)
+    return e1, ei
+
+
+def _exponential_shear(h, sigma, ell):
+    """:func:`shear_factor` for the two-sided exponential density, in closed form: with a =
+    (h + l)/sigma and c = l/sigma, (e^a E1(a) + e^-a (Ei(a) - Ei(c))) / (2 sigma) for h >= 0
+    (the heights below the mean plane, then those between it and h), e^a E1(c) / (2 sigma)
+    for h < 0. The integrals of c are taken on ``sigma`` and ``ell`` as given (one value for
+    every gap, as a read-out asks). Why: the quadrature it replaces (80 points a gap)
+    matched it to 1e-11 (7.5e-9 at 37 sigma) and cost about 4 ms of a cold fe2d base
+    solve's read-outs."""
+    c = ell / sigma
+    with np.errstate(under="ignore"):
+        ei_c, e1_c = expi(c), exp1(c)
+    shape = np.broadcast_shapes(h.shape, c.shape)
+    h, sigma, ell, c, ei_c, e1_c = (np.broadcast_to(v, shape).ravel()
+                                    for v in (h, sigma, ell, c, ei_c, e1_c))
+    a = (np.maximum(h, 0.0) + ell) / sigma
+    e1, ei = _scaled_integrals(a)
+    with np.errstate(under="ignore"):
+        up = e1 + ei - np.exp(-a) * ei_c
+        down = np.exp(np.minimum(h, 0.0) / sigma + c) * e1_c
+    return (np.where(h >= 0.0, up, down) / (2.0 * sigma)).reshape(shape)
 
 
 def _shear_factor(h, sigma, ell, distribution):
