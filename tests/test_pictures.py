@@ -274,3 +274,69 @@ def test_idler_table_says_it_slips_all_along_when_it_slips_at_the_lowest_speed()
                                   (0.0,) * n, (True,) * n), "si")
     assert "slips at every speed tried (1 m/s to 10 m/s)" in text([1e-16, 1e-30, 1e-42])
     assert "slips above about" in text([3.0, 2.0, 0.5])
+
+
+# --- the gap panel's level labels clear of the data (issue tail38, 3) ---
+
+def _gap_labels(monkeypatch, tmp_path, result):
+    """The gap panel's level labels (their boxes), its other lines and its gap curve as
+    drawn (display coordinates), and its legend's texts, measured before the save."""
+    from matplotlib.path import Path as LinePath
+    from webfem.io import pictures
+    seen = {}
+
+    def measure(fig, renderer):
+        ax = fig.axes[-2]
+        seen["labels"] = {t.get_text(): t.get_window_extent(renderer) for t in ax.texts
+                          if t.get_text().startswith(("h_c =", "3 sigma ="))}
+        lines = ax.get_lines()
+        seen["curve"] = LinePath(ax.transData.transform(lines[0].get_xydata()))
+        seen["lines"] = [(line.get_color(), LinePath(line.get_transform().transform(
+            line.get_xydata()))) for line in lines[1:]]
+        seen["frame"] = ax.bbox
+        legend = ax.get_legend()
+        seen["legend"] = [t.get_text() for t in legend.texts] if legend else []
+
+    inspect_before_save(monkeypatch, pictures, measure, "_save")
+    pictures.film_figure(result, tmp_path / "f.png")
+    return seen
+
+
+@pytest.mark.parametrize("name, speed, model", [
+    ("press_idler", 5.0, "fe1d"),       # main: both labels over the inlet's falling gap
+    ("idler", 10.0, "fe1d"),
+    ("base", 20.0, "closed-form")])
+def test_the_level_labels_cross_no_line_of_the_gap_panel(monkeypatch, tmp_path, name,
+                                                         speed, model):
+    """Each level's label (h_c, 3 sigma) is on the panel, crossing neither the gap curve
+    nor another level's line nor a wrap edge (main put both at the left end, over the
+    inlet, where the gap falls through them: press_idler at 300 m/min)."""
+    case = webfem.load_case(name).updated({"roller.speed": speed, "web.speed": speed}
+                                          if name != "base" else {"roller.speed": speed})
+    r = webfem.solve(case, model=model)
+    seen = _gap_labels(monkeypatch, tmp_path, r)
+    assert len(seen["labels"]) + sum(t.startswith(("h_c =", "3 sigma ="))
+                                     for t in seen["legend"]) == 2
+    assert len(seen["labels"]) == 2          # these cases have room on the panel
+    for text, box in seen["labels"].items():
+        assert seen["frame"].contains(box.x0, box.y0) and seen["frame"].contains(box.x1,
+                                                                                 box.y1)
+        assert not seen["curve"].intersects_bbox(box, filled=False), text
+        own = "tab:orange" if text.startswith("h_c") else "tab:blue"
+        for colour, line in seen["lines"]:
+            if colour != own:
+                assert not line.intersects_bbox(box, filled=False), (text, colour)
+    a, b = seen["labels"].values()
+    assert not a.overlaps(b)
+
+
+def test_a_level_below_zero_is_named_in_the_legend(monkeypatch, tmp_path):
+    """A web resting compressed (h_c < 0: board on its idler) has no place on the log gap
+    axis: the legend names it (main annotated it at a log of a negative number, off the
+    panel, and the layout shrank the picture around it)."""
+    r = webfem.solve("board", model="closed-form")
+    assert r["h_c"] < 0
+    seen = _gap_labels(monkeypatch, tmp_path, r)
+    assert [t for t in seen["legend"] if t.startswith("h_c =")] == [
+        f"h_c = {r['h_c'] * 1e6:.2f} um (boundary below): below 0, off the log axis"]
+    assert not any(t.startswith("h_c") for t in seen["labels"])

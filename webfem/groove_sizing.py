@@ -73,7 +73,8 @@ MAP_COLUMNS = ("speed", "pitch", "width", "depth", "land_fraction", "mu", "h_cen
 #: what fe2d computes, so its mu does not make it feasible.
 SAG_FLAG = "web sags into the grooves: the film over the land edges is not what fe2d computes"
 LOSS_COLUMNS = ("pitch", "width", "depth", "land_fraction", "loss_speed", "mu_peak",
-                "speed_peak", "evaluations", "converged", "message")
+                "speed_peak", "evaluations", "converged", "message", "scan_limit",
+                "scanned_to")
 
 
 @dataclass(frozen=True)
@@ -111,7 +112,13 @@ class LossSpeed:
     """The traction-loss speed of one groove geometry (pitch 0: the smooth roller), SI units.
 
     ``speed`` is None when mu does not fall to mu_min in the scanned range (``message`` says
-    which way); ``converged`` is False when a solve of the search failed.
+    which way); ``converged`` is False when a solve of the search failed. ``scanned_to``
+    [m/s] is the highest speed the scan answered, ``scan_limit`` why it ended there below
+    the range asked (as :class:`webfem.traction.TractionLoss`'s: fe2d refused the next
+    speed, or the line cannot run faster); None where the scan covered the range or stopped
+    at its crossing. A row without a speed and with a ``scan_limit`` was refused partway:
+    mu stays on its side of mu_min up to ``scanned_to``, above it nothing is known
+    (:meth:`refused_partway`).
     """
 
     pitch: float
@@ -124,9 +131,16 @@ class LossSpeed:
     evaluations: int
     converged: bool
     message: str
+    scan_limit: str | None = None
+    scanned_to: float | None = None
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+    def refused_partway(self) -> bool:
+        """Whether the scan ended below the range asked without finding a speed: its
+        answer holds only up to ``scanned_to`` (``scan_limit`` says why)."""
+        return self.converged and self.speed is None and bool(self.scan_limit)
 
 
 def check_arguments(mu_min, *, speeds=(), pitches=(), land_fractions=(), depths=()) -> float:
@@ -365,7 +379,9 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
     -------
     list of LossSpeed
         The smooth roller first (pitch 0), then pitch by pitch, land fraction by land
-        fraction. A search whose solve failed has ``converged = False`` and the reason.
+        fraction. A search whose solve failed has ``converged = False`` and the reason; one
+        whose scan fe2d refused partway, before a crossing, ``scan_limit`` and
+        ``scanned_to``.
 
     Raises
     ------
@@ -392,7 +408,8 @@ def loss_speed_map(case: Case, mu_min: float, *, pitches: Sequence[float] = LOSS
     return [LossSpeed(r["pitch"], r["width"], r["depth"], r["land_fraction"],
                       r.get("loss_speed"), r.get("mu_peak"), r.get("speed_peak"),
                       int(r.get("evaluations") or 0), bool(r["converged"]),
-                      r.get("message") or "") for r in rows]
+                      r.get("message") or "", r.get("scan_limit") or None,
+                      r.get("scanned_to")) for r in rows]
 
 
 def _loss_row(case: Case, mu_min: float, opts, shapes, search: dict, n: int) -> dict:
@@ -409,4 +426,5 @@ def _loss_row(case: Case, mu_min: float, opts, shapes, search: dict, n: int) -> 
     except (ConvergenceError, NoAdmissibleSolution) as err:   # kept, as in a sweep
         return {**out, "converged": False, "message": " ".join(str(err).split())}
     return {**out, "loss_speed": t.speed, "mu_peak": t.mu_peak, "speed_peak": t.speed_peak,
-            "evaluations": t.evaluations, "converged": True, "message": t.message}
+            "evaluations": t.evaluations, "converged": True, "message": t.message,
+            "scan_limit": t.scan_limit, "scanned_to": t.scanned[1] if t.scanned else None}

@@ -2,7 +2,10 @@
 
 An idler turns with the web (U_r = U_w): :func:`margin_curve` solves the case at line speeds
 ``speeds`` with both speeds set to each one, through the one continuation loop, and returns
-the traction needed and available at each (:func:`webfem.physics.effects.idler_check`).
+the traction needed and available at each (:func:`webfem.physics.effects.idler_check`), and
+where an answer's contact comes from the exponential heights' tail beyond any surface
+(:func:`webfem.physics.contact.beyond_the_surface`), its warning: each speed's verdict is
+the one ``webfem solve`` gives at that speed (:func:`webfem.describe.idler_verdict`).
 
 Examples
 --------
@@ -25,7 +28,7 @@ from .api import solve, solve_along
 from .case import Case
 from .errors import ConvergenceError, InputError, ValidityWarning
 from .line_speed import at_speed
-from .physics.contact import tail_warning
+from .physics.contact import beyond_the_surface, tail_gaussian_gaps, tail_warning
 from .physics.effects import margin_range, margin_verdict, states_load
 
 __all__ = ["MarginCurve", "margin_curve", "idler_at_web_speed"]
@@ -52,10 +55,18 @@ class MarginCurve:
     error_mu: tuple[float, ...] = ()
     margin_low: tuple[float, ...] = ()
     margin_high: tuple[float, ...] = ()
+    #: Per speed, whether the answer's asperity contact comes from the exponential heights'
+    #: tail beyond any surface (:func:`~webfem.physics.contact.beyond_the_surface`: h_c above
+    #: 5 sigma carrying at least 0.5 % of the load), and that answer's warning (None where
+    #: it does not apply); empty for a curve made without them.
+    exponential_tail: tuple[bool, ...] = ()
+    tail_warnings: tuple[str | None, ...] = ()
 
-    #: The columns of :meth:`rows` (and of ``webfem idler --out``'s CSV), SI units.
+    #: The columns of :meth:`rows` (and of ``webfem idler --out``'s CSV), SI units:
+    #: ``verdict`` as :meth:`verdicts`, ``exponential_tail`` as the field.
     COLUMNS = ("speed", "delta_T_required", "delta_T_available", "slip_margin", "mu_onset",
-               "converged", "model_used", "error_mu", "margin_low", "margin_high")
+               "converged", "model_used", "error_mu", "margin_low", "margin_high", "verdict",
+               "exponential_tail")
 
     def to_dict(self) -> dict:
         """The fields, JSON-safe (a speed without an answer has None for its numbers)."""
@@ -70,16 +81,31 @@ class MarginCurve:
         return [dict(zip(self.COLUMNS, values)) for values in zip(
             self.speeds, self.delta_T_required, self.delta_T_available, self.slip_margin,
             self.mu_onset, self.converged, used, self.error_mu or none,
-            self.margin_low or none, self.margin_high or none)]
+            self.margin_low or none, self.margin_high or none, self.verdicts(),
+            self.exponential_tail or none)]
 
     def verdicts(self) -> list[str]:
         """Per speed: ``holds`` (the margin's whole stated range at or above 1), ``SLIPS``
-        (all of it below 1), ``unsure`` (the stated error of mu leaves either possible) or
-        ``no answer``."""
+        (all of it below 1), ``unsure`` (the stated error of mu leaves either possible, or
+        the margin holds only by the exponential heights' tail: :meth:`tail_unsure`) or
+        ``no answer``: the word of a single ``webfem solve`` at that speed
+        (:func:`webfem.describe.idler_verdict`)."""
+        tail = self.tail_unsure()
+        return ["unsure" if t else v for v, t in zip(self._range_verdicts(), tail)]
+
+    def _range_verdicts(self) -> list[str]:
+        """Per speed, the verdict of the margin's stated range alone."""
         low = self.margin_low or self.slip_margin
         high = self.margin_high or self.slip_margin
         return [margin_verdict(lo, hi) if ok else "no answer"
                 for ok, lo, hi in zip(self.converged, low, high)]
+
+    def tail_unsure(self) -> list[bool]:
+        """Per speed, whether it is ``unsure`` only because its margin holds by the
+        exponential heights' tail (``exponential_tail``; see ``tail_warnings``): the range
+        alone says ``holds``, as :func:`webfem.describe.idler_verdict` judges it."""
+        tail = self.exponential_tail or (False,) * len(self.speeds)
+        return [v == "holds" and bool(t) for v, t in zip(self._range_verdicts(), tail)]
 
     def answered(self) -> str:
         """Which model answered: ``fe1d``, or for auto ``auto: fe2d at every speed`` /
@@ -153,11 +179,29 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
               if r is not None else (math.nan, math.nan) for c, r in zip(cases, results)]
     used = tuple((r.summary.model_used or r["model"]) if r is not None else model
                  for r in results)
-    return MarginCurve(model, tuple(speeds),
-                       converged=tuple(r is not None and bool(r["converged"])
-                                       for r in results),
+    converged = tuple(r is not None and bool(r["converged"]) for r in results)
+    tail, said = _tails(cases, results, converged)
+    return MarginCurve(model, tuple(speeds), converged=converged,
                        models_used=used, margin_low=tuple(lo for lo, _ in ranges),
-                       margin_high=tuple(hi for _, hi in ranges), **pick)
+                       margin_high=tuple(hi for _, hi in ranges), exponential_tail=tail,
+                       tail_warnings=said, **pick)
+
+
+def _tails(cases, results, converged):
+    """Per speed, whether the answer's contact comes from the exponential heights' tail
+    (:func:`~webfem.physics.contact.beyond_the_surface`, judged on its h_c and contact share
+    as :func:`webfem.describe.idler_verdict` judges a single solve) and its warning, the
+    Gaussian h_c of every warning solved at once."""
+    def read(r, ok, key):
+        return float(r[key]) if ok and r[key] is not None else math.nan
+    h_c = [read(r, ok, "h_c") for r, ok in zip(results, converged)]
+    share = [read(r, ok, "contact_share") for r, ok in zip(results, converged)]
+    tail = tuple(bool(ok and beyond_the_surface(c, h, s))
+                 for c, h, s, ok in zip(cases, h_c, share, converged))
+    gaps = tail_gaussian_gaps(cases, h_c, share)
+    said = tuple(tail_warning(c, h, s, g) if t else None
+                 for c, h, s, g, t in zip(cases, h_c, share, gaps, tail))
+    return tail, said
 
 
 def idler_at_web_speed(result, model: str = "auto", options=None):

@@ -219,12 +219,25 @@ def _print_losses(losses, mu_min: float, units: str = "si") -> None:
                  f"  {g(x.pitch):8.3g}  {g(x.width):9.3g}  {g(x.depth):8.3g}")
         if not x.converged:
             found = f"  no answer: {_short(x.message)}"
+        elif x.refused_partway():
+            found = f"  {_refused_text(x, mu_min, units)}"
         elif x.speed is None:
             found = f"  {x.message}"
         else:
             found = (f"{x.speed:16.3g}  {convert(x.speed, 'speed', other):6.0f}   "
                      f"{x.evaluations:6d}")
         print(f"{shape}  {100 * x.land_fraction:6.1f}{found}")
+
+
+def _refused_text(x, mu_min: float, units: str) -> str:
+    """A loss-speed row whose scan fe2d refused partway, before a crossing: where it
+    answered, which side of mu_min mu stayed on there, and why the scan ended (as
+    ``webfem traction-loss`` says it with exit 4 and ``scan_limit``; cut to 100 characters,
+    the CSV's and --json's ``scan_limit`` hold all of it)."""
+    side = "above" if x.mu_peak is not None and x.mu_peak >= mu_min else "below"
+    return (f"refused partway: no loss speed up to {display(x.scanned_to, 'speed', units)}"
+            f", the last speed answered (mu stays {side} {mu_min:g} there); the scan ended "
+            f"{_short(x.scan_limit, 100)}")
 
 
 def run(args) -> int:

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..describe import SMALL, small_text
 from ..idler import margin_curve
+from ..physics.contact import TAIL_SIGMAS
 from ..units import convert, display, unit_label
 from .common import (HELP_FORMATTER, add_case_arguments, add_units_argument, case_from,
                      model_options, options_epilog, output_folder, positive_int, print_json,
@@ -29,8 +30,10 @@ def add_parser(subparsers) -> None:
                    help="write CASE_idler.csv (SI: speed, delta_T_required, "
                         "delta_T_available, slip_margin, mu_onset, converged, model_used, "
                         "error_mu, margin_low, margin_high: the margin's range from mu's "
-                        "stated error; with --units metric|us also a converted copy) and "
-                        "CASE_idler.png into DIR")
+                        "stated error, verdict, exponential_tail: the margin rests on "
+                        "asperities the exponential heights put beyond 5 sigma; with "
+                        "--units metric|us also a converted copy) and CASE_idler.png into "
+                        "DIR")
     p.add_argument("--json", action="store_true", help="the curve as JSON (SI units)")
     add_units_argument(p)
 
@@ -45,7 +48,8 @@ def run(args) -> int:
     speeds = np.linspace(args.min_speed, args.max_speed, args.num)
     curve = margin_curve(case, speeds, args.model, model_options(args))
     if args.json:
-        print_json(curve.to_dict() | {"slip_speed": curve.slip_speed()})
+        print_json(curve.to_dict() | {"slip_speed": curve.slip_speed(),
+                                      "verdicts": curve.verdicts()})
     else:
         print(_table(curve, args.units))
     if folder is not None:
@@ -95,6 +99,8 @@ def _table(curve, units: str) -> str:
                       f"{verdict:<7}" + (f"  {name}" if mixed else "")).rstrip())
     slip = curve.slip_speed()
     unsure = [u for u, v in zip(curve.speeds, verdicts) if v == "unsure"]
+    by_tail = [u for u, t in zip(curve.speeds, curve.tail_unsure()) if t]
+    by_range = [u for u in unsure if u not in by_tail]
     extent = curve.slip_extent()
     answered = [u for u, ok in zip(curve.speeds, curve.converged) if ok]
     tried = (f"{display(answered[0], 'speed', units, 3)} to "
@@ -116,9 +122,32 @@ def _table(curve, units: str) -> str:
         lines.append("  the idler holds wherever an answer was found")
     elif not unsure:
         lines.append("  no speed was answered: no verdict")
-    if unsure:
-        at = ", ".join(display(u, "speed", units, 3) for u in unsure)
+    if by_range:
+        at = ", ".join(display(u, "speed", units, 3) for u in by_range)
         lines.append(f"  unsure at {at}: the answer's stated error of mu puts the margin on "
                      "both sides of 1; a finer model decides (--model fe1d or fe2d; under "
                      "auto, a lower --opt tol)")
+    if any(curve.exponential_tail):
+        lines.extend(_tail_lines(curve, by_tail, units))
     return "\n".join(lines)
+
+
+def _tail_lines(curve, by_tail, units: str) -> list[str]:
+    """Where an answer's contact comes from the exponential heights' tail: the speeds whose
+    margin holds only by it (unsure, as ``webfem solve`` words its verdict there) and the
+    first such speed's warning in full (each speed's is in ``--json``'s
+    ``tail_warnings``)."""
+    lines = []
+    if by_tail:
+        at = ", ".join(display(u, "speed", units, 3) for u in by_tail)
+        lines.append(f"  unsure at {at}: the margin holds only by the exponential heights' "
+                     f"tail (h_c beyond {TAIL_SIGMAS:g} sigma, where no surface has "
+                     "asperities); friction.distribution = \"gaussian\" decides")
+    tails = [u for u, t in zip(curve.speeds, curve.exponential_tail) if t]
+    first = curve.speeds.index(tails[0])
+    more = ", ".join(display(u, "speed", units, 3) for u in tails[1:])
+    lines.append(f"  warning at {display(tails[0], 'speed', units, 3)}: "
+                 f"{curve.tail_warnings[first]}"
+                 + (f" (so at {more} too, each with its own numbers: --json's "
+                    "tail_warnings)" if more else ""))
+    return lines

@@ -120,13 +120,17 @@ def loss_speed_chart(losses, mu_min: float, path, speed_range, title: str = "",
     keys), the smooth roller's with pitch 0. A geometry whose mu stays above mu_min up to
     the top of ``speed_range`` is drawn as an upward triangle at that speed, one whose mu
     never reaches mu_min as a downward triangle at the bottom, a failed search as a cross
-    on the bottom edge; the triangles and crosses of different pitches are set slightly
-    apart so that none hides another.
+    on the bottom edge, a scan fe2d refused partway, before a crossing (``scan_limit``), as
+    a diamond at the last speed it answered (``scanned_to``), off the lines: nothing is
+    known above it; the triangles, diamonds and crosses of different pitches are set
+    slightly apart so that none hides another.
     """
     rows = _rows(losses)
     size, shown = _sizes(units)
     lo, hi = (float(v) for v in speed_range)
     found = [r["speed"] for r in rows if r["converged"] and r["speed"] is not None]
+    found += [r["scanned_to"] for r in rows if r["converged"] and r["speed"] is None
+              and r.get("scan_limit") and r.get("scanned_to") is not None]
     bottom = min(found + [hi]) / 1.6
     fig, ax = plt.subplots(figsize=(6.8, 5.2))
 
@@ -135,13 +139,16 @@ def loss_speed_chart(losses, mu_min: float, path, speed_range, title: str = "",
             return bottom, "x"
         if r["speed"] is not None:
             return r["speed"], "o"
+        if r.get("scan_limit") and r.get("scanned_to") is not None:
+            return r["scanned_to"], "d"
         return (hi, "^") if "above" in r["message"] else (max(lo, bottom), "v")
 
     for r in rows:
         if r["pitch"] == 0.0 and r["converged"]:
             y, kind = where(r)
             text = (f"smooth roller: {y:.3g} m/s" if kind == "o" else
-                    f"smooth roller: {'above' if kind == '^' else 'below'} {y:g} m/s")
+                    f"smooth roller: none up to {y:.3g} m/s, refused above" if kind == "d"
+                    else f"smooth roller: {'above' if kind == '^' else 'below'} {y:g} m/s")
             ax.axhline(y, color="0.3", ls="--", lw=1.2, label=text)
     grooved = [r for r in rows if r["pitch"] > 0.0]
     keys = list(dict.fromkeys((r["pitch"], r["depth"]) for r in grooved))
@@ -149,7 +156,7 @@ def loss_speed_chart(losses, mu_min: float, path, speed_range, title: str = "",
         line = sorted((r for r in grooved if (r["pitch"], r["depth"]) == key),
                       key=lambda r: r["land_fraction"])
         pts = [(100 * r["land_fraction"], *where(r)) for r in line]
-        solved = [p for p in pts if p[2] != "x"]
+        solved = [p for p in pts if p[2] not in ("x", "d")]
         (h,) = ax.plot([p[0] for p in solved], [p[1] for p in solved], "-",
                        label=f"pitch {shown(key[0])} {size}, depth {shown(key[1])} {size}")
         shift = 0.4 * (k - 0.5 * (len(keys) - 1))   # [% land]: capped markers side by side
@@ -172,6 +179,9 @@ def loss_speed_chart(losses, mu_min: float, path, speed_range, title: str = "",
     ax.plot([], [], "^", color="0.4", ls="none", label=f"mu >= mu_min up to {hi:g} m/s")
     if any(where(r)[1] == "x" for r in grooved):
         ax.plot([], [], "x", color="0.4", ls="none", mew=2, label="search failed (see CSV)")
+    if any(where(r)[1] == "d" for r in rows if r["converged"]):
+        ax.plot([], [], "d", color="0.4", ls="none",
+                label="refused partway: no loss speed up to\nthis speed (the CSV's scan_limit)")
     # below the axes: the data fill the plot from the smooth line up to the scan's top
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
               frameon=False)

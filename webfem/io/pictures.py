@@ -4,7 +4,9 @@ For a 2-D result (fe2d, or auto answering with it) the picture has three aligned
 
 a. the film pressure p - p_a over the arc x and the full width z, on a diverging colour map
    centred on 0 (red above ambient, blue below); a half-width solve is mirrored;
-b. the gap h along the centre line against the regime levels h_c and 3 sigma;
+b. the gap h along the centre line against the regime levels h_c and 3 sigma, each labelled
+   where its words cross no line of the panel (:func:`_level_labels`: the right end, the
+   left, or along the wrap; in the panel's legend where nowhere is clear);
 c. the local friction coefficient mu(x) in the wrap, over bands showing the local regime,
    and the headline mu as a dashed line: the wrap average where the web slides; where
    nothing slides (an idler) the traction available at the onset of slip, mu_onset, which
@@ -36,7 +38,9 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import CenteredNorm  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.path import Path as LinePath  # noqa: E402
 from matplotlib.ticker import FormatStrFormatter, NullFormatter  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
@@ -87,12 +91,79 @@ def _edges(ax, half, scale, label=False):
                         fontsize=7, color="0.2")
 
 
-def _level(ax, value, text, colour):
-    """A horizontal level with its label at the left (over the wide inlet gap), just above
-    the line."""
-    ax.axhline(value, color=colour, lw=0.9, zorder=1)
-    ax.annotate(text, (0.0, value), xycoords=("axes fraction", "data"), xytext=(3, 1),
-                textcoords="offset points", ha="left", va="bottom", fontsize=7, color=colour)
+#: Where a level's label may sit, in the order tried: (x as a fraction of the axis, the
+#: side of the text at it); each above its line, then below it. The ends first (the far
+#: entry gaps are off the top there for most films), then along the wrap from the right.
+LABEL_SPOTS = ((1.0, "right"), (0.0, "left"),
+               *((f, "center") for f in (0.75, 0.6, 0.4, 0.25, 0.85, 0.15, 0.5)))
+
+
+def _level_labels(ax, levels, curve) -> None:
+    """Label each level ``(value, text, colour)`` of the gap axis ``ax`` (its line drawn)
+    where its words touch no line of the panel: the gap ``curve`` ``(x, h)`` as drawn, the
+    other level lines, the wrap edges, a legend or another label. Tried at
+    :data:`LABEL_SPOTS`, above the line then below; a level with no clear spot is named in
+    the panel's legend instead, as is a level at or below 0 (a web resting compressed),
+    which a log axis cannot show. Positions are measured on the laid-out figure, so nothing
+    drawn after this call may move the panel."""
+    fig = ax.figure
+    fig.draw_without_rendering()   # the layout, the limits and the pixel scale are final
+    renderer = fig.canvas.get_renderer()
+    x, h = curve
+    ok = np.isfinite(x) & np.isfinite(h) & (h > 0)
+    obstacles = [(LinePath(ax.transData.transform(np.column_stack([x[ok], h[ok]]))), False)]
+    obstacles += [(LinePath(line.get_transform().transform(line.get_xydata())), False)
+                  for line in ax.get_lines() if len(line.get_xydata()) == 2]
+    # filled areas (the closed form's landed web): a label inside one is on the data too
+    obstacles += [(p.transformed(c.get_transform()), True) for c in ax.collections
+                  for p in c.get_paths()]
+    # a web resting compressed (h_c < 0) has no place on a log axis: named in the legend
+    # first, so the labels placed below keep clear of it
+    _in_legend(ax, [(f"{text}: below 0, off the log axis", colour)
+                    for value, text, colour in levels if value <= 0.0])
+    taken = [ax.get_legend().get_window_extent(renderer)] if ax.get_legend() else []
+    frame = ax.bbox
+    unplaced = []
+    for value, text, colour in levels:
+        if value <= 0.0:
+            continue
+        own = ax.transData.transform((0.0, value))[1]
+        for (fx, ha), va in ((spot, va) for spot in LABEL_SPOTS for va in ("bottom", "top")):
+            label = ax.annotate(text, (fx, value), xycoords=("axes fraction", "data"),
+                                xytext=({"left": 3, "right": -3}.get(ha, 0),
+                                        1.5 if va == "bottom" else -1.5),
+                                textcoords="offset points", ha=ha, va=va, fontsize=7,
+                                color=colour)
+            label.set_in_layout(False)
+            box = label.get_window_extent(renderer).padded(1.0)
+            inside = (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0
+                      and box.y1 <= frame.y1)
+            # its own line runs just beside the box; every other line must miss it
+            crossed = any(path.intersects_bbox(box, filled=filled)
+                          for path, filled in obstacles if not _is_level(path, own))
+            if inside and not crossed and not any(box.overlaps(t) for t in taken):
+                taken.append(box)
+                break
+            label.remove()
+        else:
+            unplaced.append((text, colour))
+    _in_legend(ax, unplaced)
+
+
+def _in_legend(ax, named) -> None:
+    """Name the levels ``named`` ``(text, colour)`` in the legend of ``ax``, beside what it
+    names already (the landed web); "best" keeps it off the lines and labels drawn."""
+    if not named:
+        return
+    handles, _ = ax.get_legend_handles_labels() if ax.get_legend() else ([], [])
+    handles += [Line2D([], [], color=colour, lw=0.9, label=text) for text, colour in named]
+    ax.legend(handles=handles, loc="best", fontsize=7, framealpha=0.9)
+
+
+def _is_level(path, y) -> bool:
+    """Whether ``path`` (display coordinates) is the horizontal line at height ``y``."""
+    v = path.vertices
+    return len(v) == 2 and abs(v[0, 1] - y) < 0.5 and abs(v[1, 1] - y) < 0.5
 
 
 def _centre_line(result):
@@ -187,13 +258,17 @@ def film_figure(result, path, title: str | None = None, units: str = "si") -> Pa
                "tab:orange"),
               (3 * s.sigma * to_h, f"3 sigma = {level_text(3 * s.sigma * to_h)} {h_unit} "
                f"({words[1]})", "tab:blue")]
-    for value, text, colour in levels:
-        if math.isfinite(value):
-            _level(ax, value, text, colour)
+    levels = [level for level in levels if math.isfinite(level[0])]
+    for value, _, colour in levels:
+        if value > 0.0:
+            ax.axhline(value, color=colour, lw=0.9, zorder=1)
+    gap_axis, drawn = ax, (x[inside] * to_x, h[inside] * to_h)
     # a log axis: the landing zone (a few um) and the entry gaps (tens of um) both show
     shown = h[inside][h[inside] > 0] * to_h
-    low = max(min([s.h_c * to_h, 3 * s.sigma * to_h] + ([shown.min()] if shown.size else [])),
-              0.1 * s.h_c * to_h)
+    # the levels above 0 only: a web resting compressed (h_c < 0) has none on a log axis
+    drawn_levels = [v for v in (s.h_c * to_h, 3 * s.sigma * to_h) if v > 0]
+    low = max(min(drawn_levels + ([shown.min()] if shown.size else [])),
+              0.1 * drawn_levels[0])
     landed = inside & (h * to_h < 0.5 * low)
     if landed.any():   # the closed form lands the web (h = 0), which a log axis cannot show
         ax.fill_between(x * to_x, 0.5 * low, 4.0 * low, where=landed, color="0.6", lw=0,
@@ -258,6 +333,8 @@ def film_figure(result, path, title: str | None = None, units: str = "si") -> Pa
         a.grid(True, alpha=0.25) if a is not axes[0] or not two_d else None
     for a in axes[:-1]:
         a.tick_params(labelbottom=False)
+    # last: the labels are placed on the finished layout, clear of every line
+    _level_labels(gap_axis, levels, drawn)
     return _save(fig, path)
 
 

@@ -68,7 +68,7 @@ import numpy as np
 from ..case import Case
 from ..physics import closed_form as cf
 from ..physics.contact import (REGIMES, contact_gap, contact_pressure, regime_code,
-                               tail_warning)
+                               tail_gaussian_gaps, tail_warning)
 from ..physics.effects import CLOSED_FORM_CARRIES, included, left_out, traction_summary
 from ..errors import NoAdmissibleSolution
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
@@ -197,7 +197,7 @@ def _contact_share(h_in, h_out, h_c, p_bar, E_b, sigma, t, distribution, n=24):
     return np.sum(np.minimum(pc / p_bar, 1.0) * 0.5 * gw, axis=-1)
 
 
-def _warnings(case: Case, summary: dict) -> list[str]:
+def _warnings(case: Case, summary: dict, gaussian_gap=None) -> list[str]:
     out = []
     missing = left_out(case)
     if missing:
@@ -227,7 +227,7 @@ def _warnings(case: Case, summary: dict) -> list[str]:
     slip = slip_warning(case, summary["h_min"])
     if slip:
         out.append(slip)
-    tail = tail_warning(case, summary["h_c"], summary["contact_share"])
+    tail = tail_warning(case, summary["h_c"], summary["contact_share"], gaussian_gap)
     thick = thick_web_warning(case, summary["h_min"])
     out.extend(w for w in (tail, thick) if w)
     return out
@@ -241,12 +241,15 @@ NO_ANSWER_NAN = ("h_center", "h_inlet", "h_outlet", "h_min", "mu", "delta_T", "h
                  "slip_margin")
 
 
-def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Summary:
+def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float,
+                        gaussian_gap=None) -> Summary:
     """The :class:`~webfem.result.Summary` of point ``i`` of :func:`evaluate`'s output;
     where the closed form has no answer, ``converged`` is False, ``solver_message`` and the
     first of the ``warnings`` say why (see the module text), the computed numbers
     (:data:`NO_ANSWER_NAN`) are NaN and ``regime`` is ``"none"``, as
-    :func:`webfem.result.refused` gives the other models'."""
+    :func:`webfem.result.refused` gives the other models'. ``gaussian_gap``: the point's
+    Gaussian h_c for the tail warning where a batch solved it
+    (:func:`~webfem.physics.contact.tail_gaussian_gaps`)."""
     s = {key: (np.asarray(v)[i] if np.ndim(v) else v) for key, v in values.items()}
     s = {k: (v.item() if hasattr(v, "item") else v) for k, v in s.items()}
     code = int(s.pop("no_answer"))
@@ -258,7 +261,7 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float) -> Sum
              sigma=case.sigma, U=case.U, U_slide=case.U_slide, T_eff=case.tension_eff,
              bending_stiffness_used=0.0,
              effects=tuple(e for e in included(case) if e in CLOSED_FORM_CARRIES))
-    s["warnings"] = _warnings(case, s)
+    s["warnings"] = _warnings(case, s, gaussian_gap)
     if code:
         # the reason reads from the traction at the stated speeds, which it judged
         s["solver_message"] = no_answer_reason(
@@ -359,11 +362,14 @@ def solve_many(cases) -> list[Result]:
         t0 = time.perf_counter()
         values = evaluate(**case_arrays([cases[i] for i in idx]), variant=variant,
                           distribution=distribution, roughness=flow == "mean-gap")
+        # the tail warnings' Gaussian h_c in one vectorised solve, not one per point
+        gaussian = tail_gaussian_gaps([cases[i] for i in idx], values["h_c"],
+                                      values["contact_share"])
         elapsed = (time.perf_counter() - t0) / len(idx)
         for j, i in enumerate(idx):
             # summaries only: the fields are the wrap endpoints of the linear Eq. 21 gap
             # (none where there is no answer)
-            s = summary_from_arrays(values, j, cases[i], elapsed)
+            s = summary_from_arrays(values, j, cases[i], elapsed, gaussian[j])
             half = cases[i].roller.radius * cases[i].B / 2 if s.converged else None
             out[i] = Result(cases[i], s, Fields(x=np.array([-half, half]),
                                                 h=np.array([s.h_inlet, s.h_outlet]))

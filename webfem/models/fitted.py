@@ -40,7 +40,8 @@ import numpy as np
 from ..case import Case
 from ..cores import usable_cores
 from ..errors import NoAdmissibleSolution
-from ..physics.contact import REGIMES, contact_gap, contact_pressure, tail_warning
+from ..physics.contact import (REGIMES, contact_gap, contact_pressure, tail_gaussian_gaps,
+                               tail_warning)
 from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
 from ..result import Diagnostics, Fields, Result, refused
@@ -405,11 +406,14 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     effects = {kind: included(cases[i]) for kind, i in first.items()}
     x = fg.NODES[None, :] * beta[:, None] * v["x_scale"][:, None]
     h, loc = r["h"], r["loc"]
+    # the tail warnings' Gaussian h_c in one vectorised solve, not one per case
+    gaussian = tail_gaussian_gaps(cases, per_case["h_c"], per_case["contact_share"])
     out = []
     for i, (case, row, tr, regime, region, kind) in enumerate(zip(
             cases, zip(*columns), traction, regimes, pr["region"].tolist(), kinds)):
         values = dict(zip(names, row))
-        tail = tail_warning(case, values.get("h_c"), values.get("contact_share"))
+        tail = tail_warning(case, values.get("h_c"), values.get("contact_share"),
+                            gaussian[i])
         summary = Summary(**values, **tr, **fixed, regime=regime,
                           effects=effects[kind], warnings=(tail,) if tail else (),
                           error_basis=basis[region] + (ONSET_BASIS if idle[i] else ""))

@@ -91,7 +91,7 @@ def contact_gap(p_bar, E_b, sigma, t, distribution="exponential"):
     return _gaussian_gap(p_bar, E_b, sigma, t)
 
 
-def _gaussian_gap(p_bar, E_b, sigma, t):
+def _gaussian_gap(p_bar, E_b, sigma, t, per_point=False):
     """h_c of the Gaussian heights: Newton's method on ln E[(z - h)+] = ln(p_bar t / E_b).
 
     In log space (:func:`~webfem.physics.roughness.log_mean_excess`) nothing underflows,
@@ -101,18 +101,26 @@ def _gaussian_gap(p_bar, E_b, sigma, t):
     at most one step the iterates fall monotonically to the root. The start: where the
     density phi(h / sigma) / sigma = p_bar t / (E_b sigma), above the root (E = sigma phi
     g < sigma phi there), or, for a load the asperities carry only compressed (h_c < 0),
-    h = -p_bar t / E_b, where the linear part alone carries p_bar."""
+    h = -p_bar t / E_b, where the linear part alone carries p_bar.
+
+    Arrays step together until every point has converged; ``per_point`` stops each point at
+    its own convergence instead, so its h_c is the bits a solve of that point alone gives
+    (:func:`tail_gaussian_gaps`)."""
     p_bar, E_b, sigma, t = np.broadcast_arrays(*(np.asarray(v, dtype=float)
                                                  for v in (p_bar, E_b, sigma, t)))
     target = np.log(p_bar * t / E_b)
     ratio = np.exp(np.log(E_b * sigma / (t * p_bar)) - np.log(_SQ2PI))
     h = np.where(ratio > 1.0, sigma * np.sqrt(2.0 * np.log(np.maximum(ratio, 1.0))),
                  -p_bar * t / E_b)
+    going = np.ones(h.shape, dtype=bool)
     for _ in range(100):
         log, slope = log_mean_excess(h, sigma, "gaussian")
         step = (log - target) / slope
+        if per_point:
+            step = np.where(going, step, 0.0)
         h = h - step
-        if np.all(np.abs(step) <= 1e-14 * np.maximum(sigma, np.abs(h))):
+        going &= ~(np.abs(step) <= 1e-14 * np.maximum(sigma, np.abs(h)))
+        if not np.any(going):
             break
     return h[()] if h.ndim == 0 else h
 
@@ -180,14 +188,38 @@ def beyond_the_surface(case, h_c, contact_share) -> bool:
             and contact_share >= TAIL_SHARE)
 
 
-def tail_warning(case, h_c, contact_share) -> str | None:
+def tail_gaussian_gaps(cases, h_c, contact_share) -> np.ndarray:
+    """The Gaussian heights' h_c (Eq. 1) of every case :func:`beyond_the_surface`, NaN at
+    the others, in one vectorised Newton solve: what :func:`tail_warning` computes point by
+    point, bit for bit (:func:`_gaussian_gap` stops each point at its own convergence), for
+    a batch (``h_c``, ``contact_share``: arrays or sequences beside ``cases``). A stiff
+    batch's warnings then cost what its other numbers do, not one scalar Newton solve each.
+    """
+    cases = list(cases)
+    h_c, contact_share = (np.broadcast_to(np.asarray(v, float), (len(cases),)).tolist()
+                          for v in (h_c, contact_share))
+    beyond = np.array([beyond_the_surface(c, h, s)
+                       for c, h, s in zip(cases, h_c, contact_share)], dtype=bool)
+    out = np.full(len(cases), np.nan)
+    if np.any(beyond):
+        at = [c for c, b in zip(cases, beyond) if b]
+        out[beyond] = _gaussian_gap(
+            np.array([c.p_bar for c in at]), np.array([c.web.modulus_thickness for c in at]),
+            np.array([c.sigma for c in at]), np.array([c.web.thickness for c in at]),
+            per_point=True)
+    return out
+
+
+def tail_warning(case, h_c, contact_share, gaussian_gap=None) -> str | None:
     """The warning of :func:`beyond_the_surface` (None where it does not apply), with what
     the Gaussian heights (Eq. 1) give for h_c: cheap, and where it lies far below the solved
-    gaps the contact, mu and an idler's margin rest on the tail alone."""
+    gaps the contact, mu and an idler's margin rest on the tail alone. ``gaussian_gap``: that
+    h_c where a batch has it already (:func:`tail_gaussian_gaps`); None solves it here."""
     if not beyond_the_surface(case, h_c, contact_share):
         return None
     w, s = case.web, case.sigma
-    h_g = float(contact_gap(case.p_bar, w.modulus_thickness, s, w.thickness, "gaussian"))
+    h_g = (float(contact_gap(case.p_bar, w.modulus_thickness, s, w.thickness, "gaussian"))
+           if gaussian_gap is None else float(gaussian_gap))
     return (f"the asperities carry {100 * contact_share:.1f} % of the wrap load, at gaps "
             f"where the exponential heights (friction.distribution = \"exponential\", the "
             f"paper's Eq. 2) put h_c = {h_c * 1e6:.4g} um = {h_c / s:.3g} sigma above the mean "

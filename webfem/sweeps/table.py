@@ -40,7 +40,7 @@ ROW_KEYS = ("series", "parameter", "value") + SUMMARY_KEYS + EXTRA_KEYS
 #: Columns holding text (``message``: the traction-loss table of webfem.groove_sizing, kept
 #: in the same store); ``BOOL_KEYS`` hold True/False, ``INT_KEYS`` counts; others numbers.
 TEXT_KEYS = frozenset({"series", "parameter", "model", "regime", "solver_message", "mesh",
-                       "warnings", "message", "model_used", "why", "flag"})
+                       "warnings", "message", "model_used", "why", "flag", "scan_limit"})
 BOOL_KEYS = frozenset({"eq21_valid", "converged"})
 INT_KEYS = frozenset({"iterations", "n_dofs"})
 
