@@ -28,3 +28,12 @@ def test_a_study_of_a_grooved_case_says_studies_are_of_smooth_rollers(tmp_path, 
     err = capsys.readouterr().err
     assert "studies smooth rollers" in err and "roller.groove_width=0" in err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("model", ["closed-form", "fitted", "fe1d"])
+def test_a_pitch_without_a_width_is_solved_smooth_and_says_so(model):
+    """roller.groove_pitch alone gave a smooth roller's answer with no word of the grooves."""
+    r = webfem.solve(webfem.Case().updated({"roller.groove_pitch": 1.27e-3}), model=model)
+    said = [w for w in r["warnings"] if "solved smooth" in w]
+    assert said and "roller.groove_pitch = 0.00127 m set, but roller.groove_width = 0" in said[0]
+    assert not any("solved smooth" in w for w in webfem.solve("base", model=model)["warnings"])

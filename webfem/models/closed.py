@@ -74,7 +74,7 @@ from ..errors import NoAdmissibleSolution
 from ..physics.friction import (SLIP_COEFFICIENT, delta_T_from_mu, friction_for,
                                 gauss_legendre, wrap_average_linear_gap,
                                 wrap_average_loads)
-from ..physics.validity import (grooves_refused, slip_warning, thick_web_warning,
+from ..physics.validity import (answer_warnings, grooves_refused,
                                 thin_film_check)
 from ..result import Diagnostics, Fields, Result, Summary
 from .closed_refusal import NO_ANSWER, mu_bound, no_answer, no_answer_codes, no_answer_reason
@@ -224,12 +224,8 @@ def _warnings(case: Case, summary: dict, gaussian_gap=None) -> list[str]:
                    "resting on its asperities there (boundary) while the gaps stay Eq. 21's, "
                    "as the paper prints them; the FE models rest it at h_c = "
                    f"{summary['h_c'] * 1e6:.3g} um")
-    slip = slip_warning(case, summary["h_min"])
-    if slip:
-        out.append(slip)
     tail = tail_warning(case, summary["h_c"], summary["contact_share"], gaussian_gap)
-    thick = thick_web_warning(case, summary["h_min"])
-    out.extend(w for w in (tail, thick) if w)
+    out.extend(answer_warnings(case, summary["h_min"], tail))
     return out
 
 

@@ -44,6 +44,7 @@ from ..physics.contact import (REGIMES, contact_gap, contact_pressure, tail_gaus
                                tail_warning)
 from ..physics.effects import MU_SCALE, included, traction_summaries
 from ..physics.friction import friction_for
+from ..physics.validity import answer_warnings
 from ..result import Diagnostics, Fields, Result, refused
 from ..summary import Summary
 from . import fit_groups as fg
@@ -414,8 +415,8 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
         values = dict(zip(names, row))
         tail = tail_warning(case, values.get("h_c"), values.get("contact_share"),
                             gaussian[i])
-        summary = Summary(**values, **tr, **fixed, regime=regime,
-                          effects=effects[kind], warnings=(tail,) if tail else (),
+        summary = Summary(**values, **tr, **fixed, regime=regime, effects=effects[kind],
+                          warnings=tuple(answer_warnings(case, values["h_min"], tail)),
                           error_basis=basis[region] + (ONSET_BASIS if idle[i] else ""))
         fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
                         mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])

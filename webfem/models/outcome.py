@@ -13,7 +13,7 @@ from ..fem.outcome import SolveInfo
 from ..physics.closed_form import eq21_valid
 from ..physics.contact import REGIMES, tail_warning
 from ..physics.effects import included
-from ..physics.validity import slip_warning, thick_web_warning
+from ..physics.validity import answer_warnings
 from ..result import Diagnostics, Result, Summary
 from .fields import node_fields
 from .mesh_error import MeshError
@@ -49,12 +49,8 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
     ro = read_out(case, problem, u, prm)
     facts = disc.facts(case, problem, u, prm, options, ro)
     warnings = list(_warnings(case, options)) + list(facts.warnings) + list(mesh_error.notes)
-    slip = slip_warning(case, ro.h_min)
-    if slip:
-        warnings.append(slip)
     tail = tail_warning(case, float(prm.H_c * case.h_scale), ro.contact_share)
-    thick = thick_web_warning(case, ro.h_min)
-    warnings.extend(w for w in (tail, thick) if w)
+    warnings.extend(answer_warnings(case, ro.h_min, tail))
     if not info.converged:
         # the last iterate is kept for inspection; its numbers must not pass for an answer
         # wherever the result is read (JSON, a sweep's row, a report)

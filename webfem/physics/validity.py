@@ -18,7 +18,7 @@ from ..errors import NoAdmissibleSolution
 __all__ = ["MEAN_FREE_PATH", "THIN_FILM_RATIO", "BETA_MAX", "thin_film_check",
            "THICK_WEB_RATIO", "THICK_WEB_LIMIT", "COMPRESSION_RATIO", "thick_web_warning",
            "thin_film_message",
-           "wrap_length_check", "slip_warning"]
+           "wrap_length_check", "slip_warning", "smooth_roller_warning", "answer_warnings"]
 
 #: Mean free path of air at 101325 Pa and 23 C [m]; it scales as 1/p_a.
 MEAN_FREE_PATH = 68e-9
@@ -90,6 +90,28 @@ def slip_warning(case, h_min: float) -> str | None:
 
 #: The case keys of a grooved roller.
 GROOVE_KEYS = ("roller.groove_pitch", "roller.groove_width", "roller.groove_depth")
+
+
+def smooth_roller_warning(case) -> str | None:
+    """The warning of a roller given a groove pitch or depth but no groove width: it is
+    solved smooth (a width of 0 means no grooves, as in a sweep of the width from 0), which
+    the answer must say; None otherwise."""
+    r = case.roller
+    if case.grooved or (r.groove_pitch == 0.0 and r.groove_depth == 0.0):
+        return None
+    given = [f"roller.{k} = {getattr(r, k):g} m" for k in ("groove_pitch", "groove_depth")
+             if getattr(r, k) > 0.0]
+    return (f"{' and '.join(given)} set, but roller.groove_width = 0: the roller is solved "
+            "smooth (grooves need a width > 0 and < the pitch, and a depth > 0)")
+
+
+def answer_warnings(case, h_min: float, tail: str | None = None) -> list[str]:
+    """The warnings every model's answer carries where they apply, in this order: slip flow
+    (:func:`slip_warning`), the exponential heights' tail (``tail``, the caller's
+    :func:`webfem.physics.contact.tail_warning`), a thick web (:func:`thick_web_warning`)
+    and a groove geometry without a width (:func:`smooth_roller_warning`)."""
+    return [w for w in (slip_warning(case, h_min), tail, thick_web_warning(case, h_min),
+                        smooth_roller_warning(case)) if w]
 
 
 def grooves_text(case, model: str) -> str | None:

@@ -95,7 +95,9 @@ def case_of_groups(g: dict[str, float]) -> Case:
     sigma = g["S"] * h_s
     # thickness: E_b = 2 c t T / (sigma R) and k = K R t eps^(4/3) / 12 within range
     K = g["Kb"] / beta
-    t = min(max(1e6 * sigma * R / (2.0 * g["c"] * T), 1e-6), 1e-2)   # E_b about 1 MPa
+    # E_b about 1 MPa; no thicker than R/10 (t/(2R) = 0.05, inside THICK_WEB_LIMIT): the
+    # groups hold E_b t and D, not t itself
+    t = min(max(1e6 * sigma * R / (2.0 * g["c"] * T), 1e-6), 1e-2, 0.1 * R)
     if K > 0.0:      # and a permeability k <= 1e-9 m^2
         t = max(min(t, 1.2e-8 / (K * R * eps ** (4 / 3))), 1e-6)
     E_b = 2.0 * g["c"] * t * T / (sigma * R)
