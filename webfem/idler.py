@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
+from typing import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -150,8 +151,10 @@ class MarginCurve:
 
 
 def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
+                 progress: Callable[[int, int], None] | None = None,
                  **values) -> MarginCurve:
-    """The idler's slip margin at each line speed (roller and web at that speed)."""
+    """The idler's slip margin at each line speed (roller and web at that speed);
+    ``progress(done, total)`` is called after each speed the FE models solve."""
     if case.roller.drag_torque <= 0.0 and case.roller.inertia * case.web.acceleration == 0.0:
         raise InputError("the case states no idler load: set roller.drag_torque [N m] or "
                          "roller.inertia [kg m^2] with web.acceleration [m/s^2]")
@@ -170,7 +173,11 @@ def margin_curve(case: Case, speeds, model: str = "fe1d", options=None,
         answered = iter(solve_many([c for c, ok in zip(cases, inside) if ok], opts))
         results = [next(answered) if ok else None for ok in inside]
     else:
-        results = list(solve_along(cases, model, options, **values))
+        results = []
+        for r in solve_along(cases, model, options, **values):
+            results.append(r)
+            if progress is not None:
+                progress(len(results), len(cases))
     # an unconverged answer, or one made without an estimate, states no error: NaN
     pick = {k: tuple(float(r[k]) if r is not None and r[k] is not None else math.nan
                      for r in results)

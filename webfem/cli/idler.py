@@ -11,9 +11,9 @@ from ..describe import SMALL, small_text
 from ..idler import margin_curve
 from ..physics.contact import TAIL_SIGMAS
 from ..units import convert, display, unit_label
-from .common import (HELP_FORMATTER, add_case_arguments, add_units_argument, case_from,
-                     model_options, options_epilog, output_folder, positive_int, print_json,
-                     speed_value)
+from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
+                     add_units_argument, case_from, model_options, options_epilog,
+                     output_folder, positive_int, print_json, speed_value)
 
 
 def add_parser(subparsers) -> None:
@@ -36,6 +36,7 @@ def add_parser(subparsers) -> None:
                         "DIR")
     p.add_argument("--json", action="store_true", help="the curve as JSON (SI units)")
     add_units_argument(p)
+    add_quiet_argument(p)
 
 
 def run(args) -> int:
@@ -46,7 +47,8 @@ def run(args) -> int:
         raise InputError(f"--min-speed {args.min_speed:g} and --max-speed {args.max_speed:g}"
                          ": need 0 < min < max [m/s]")
     speeds = np.linspace(args.min_speed, args.max_speed, args.num)
-    curve = margin_curve(case, speeds, args.model, model_options(args))
+    curve = margin_curve(case, speeds, args.model, model_options(args),
+                         progress=Progress(args.quiet, "speeds"))
     if args.json:
         print_json(curve.to_dict() | {"slip_speed": curve.slip_speed(),
                                       "verdicts": curve.verdicts()})
