@@ -118,6 +118,11 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
         if notice and done:
             notice(f"{csv_path}: resuming: {len(done)} of {total} {what} already there, "
                    + (f"solving the other {len(todo)}" if todo else "nothing to solve"))
+        elif notice and held and store.same_sweep:
+            why = ("the earlier run was stopped before its first" if not store.rows_found
+                   else f"its {store.rows_found} rows did not converge: solved again")
+            notice(f"{csv_path}: resuming: none of its {total} {what} kept ({why}), "
+                   "solving them all")
         elif notice and held:
             notice(f"{csv_path}: starting afresh: the table there is not this run's (other "
                    "arguments or case, or no readable sidecar), its rows are replaced")

@@ -170,6 +170,10 @@ class Store:
         self.row_key = row_key
         self.keep_failures = keep_failures
         self._fd: int | None = None
+        #: Whether :meth:`load` found the table of this same sweep (its sidecar and header),
+        #: and how many rows it held (kept or not).
+        self.same_sweep = False
+        self.rows_found = 0
 
     def check_paths(self) -> None:
         """Input errors for outputs that cannot be written, before anything runs."""
@@ -267,6 +271,7 @@ class Store:
             return {}
         if table.header != list(self.columns):
             return {}
+        self.same_sweep, self.rows_found = same, len(table.rows)
         done = _by_point(table.rows, keys, self.row_key)
         return {i: r for i, r in done.items()
                 if r["converged"] == "True"
