@@ -165,11 +165,11 @@ FLAT_KEPT = 50.0
 #: 22.6 m/s, where the exit's sub-ambient pressure dip (1-1.5 units past the wrap edge) had
 #: moved off its cells: the estimate refused it (h_min 1.02e-3 against 1e-3) and bisected
 #: every cell along x (17,977 unknowns; 11 Newton steps, 7 factorisations, about 0.4 s of
-#: the sweep's 3.4 s CPU). The largest cell weight there was 29 times the cold bound; at
-#: the points before it 2-9 times (18.7 m/s: 9.2, stated 3.1e-4), on the meshes planned
-#: afresh at 27.3 and 33.1 m/s 20-24 times. At 15 the cells at 22.6 m/s are bisected before
-#: the solve (10,201 unknowns, stated 4.0e-4, 5 steps), and the planned meshes at 27.3 and
-#: 33.1 m/s gain 9-10 cells along x (docs/performance_log.md, 'sweep38').
+#: the sweep's 3.4 s CPU). The largest cell weight there was 29 times the cold bound, at
+#: the points before it at most 9.2 (18.7 m/s, stated 3.1e-4), on the meshes planned
+#: afresh at 27.3 and 33.1 m/s 42 and 21 times. At 15 the cells at 22.6 m/s are bisected
+#: before the solve (10,201 unknowns, stated 4.0e-4, 5 steps), and the planned meshes at
+#: 27.3 and 33.1 m/s gain 8-9 cells along x (docs/performance_log.md, 'sweep38').
 MISFIT_KEPT = 15.0
 
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start, on the 1-D starting
