@@ -168,7 +168,7 @@ FLAT_KEPT = 50.0
 #: the sweep's 3.4 s CPU). The largest cell weight there was 29 times the cold bound, at
 #: the points before it at most 9.2 (18.7 m/s, stated 3.1e-4), on the meshes planned
 #: afresh at 27.3 and 33.1 m/s 42 and 21 times. At 15 the cells at 22.6 m/s are bisected
-#: before the solve (10,201 unknowns, stated 4.0e-4, 5 steps), and the planned meshes at
+#: before the solve (10,201 unknowns, stated at most 4.0e-4, 5 steps), and the planned meshes at
 #: 27.3 and 33.1 m/s gain 8-9 cells along x (docs/performance_log.md, 'sweep38').
 MISFIT_KEPT = 15.0
 
