@@ -35,7 +35,7 @@ from ..progress import stage
 from .admissible import admissibility
 from .driver import REST_CHECKED, Discretisation, Start, solve_fe
 from .mesh_error import MAX_DOFS, bisected_nodes, coarser_nodes, kept_nodes
-from .refine import FLAT_GAP, adapted_nodes, interpolated_nodes
+from .refine import FLAT_GAP, adapted_nodes, interpolated_nodes, interpolation_weights
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
@@ -157,6 +157,20 @@ FLAT_RATIO = 4.0
 #: the mesh then kept from 1.9 to 10.5 m/s). The mesh error estimate still decides: there
 #: its stated errors are 3-15x Richardson's (``benchmarks/low_speed_meshes.py``'s).
 FLAT_KEPT = 50.0
+
+#: A continued point's coarser mesh is bisected where it misses the predicted state by
+#: :data:`LINE_MISFIT` (as a cold start's, :func:`_misfit_kept`) only once some cell misses
+#: it by this many times that: a hysteresis, as :data:`FLAT_KEPT`'s. Why: along the base
+#: case's 24-point speed sweep the mesh planned at 12.8 m/s (9,001 unknowns) was kept to
+#: 22.6 m/s, where the exit's sub-ambient pressure dip (1-1.5 units past the wrap edge) had
+#: moved off its cells: the estimate refused it (h_min 1.02e-3 against 1e-3) and bisected
+#: every cell along x (17,977 unknowns; 11 Newton steps, 7 factorisations, about 0.4 s of
+#: the sweep's 3.4 s CPU). The largest cell weight there was 29 times the cold bound, at
+#: the points before it at most 9.2 (18.7 m/s, stated 3.1e-4), on the meshes planned
+#: afresh at 27.3 and 33.1 m/s 42 and 21 times. At 15 the cells at 22.6 m/s are bisected
+#: before the solve (10,201 unknowns, stated at most 4.0e-4, 5 steps), and the planned meshes at
+#: 27.3 and 33.1 m/s gain 8-9 cells along x (docs/performance_log.md, 'sweep38').
+MISFIT_KEPT = 15.0
 
 #: How many cold 1-D starts :class:`_Film` keeps (a case's direct start, on the 1-D starting
 #: mesh where the mesh is decided up front, the refined one of its safe start, and its
@@ -280,6 +294,24 @@ def _fine_start(case: Case, prm, options: FE2DOptions, coarse, uc, info, fine, d
         coarse, uc, step = settled
         info = step.after(info)
     return found
+
+
+def _misfit_kept(Xc, fine, u0, prm, options: FE2DOptions) -> np.ndarray:
+    """A continued point's coarser mesh ``Xc`` (every other node of ``fine``), its cells
+    bisected as a cold start's where the mesh misses the predicted state ``u0`` (on
+    ``fine``) by the cold rule's :data:`LINE_MISFIT` (:func:`webfem.models.refine.
+    interpolated_nodes`), but only once some cell misses it by :data:`MISFIT_KEPT` times
+    that: a hysteresis, as :data:`FLAT_KEPT`'s, so that a mesh is kept along a sweep until
+    it plainly misses the state. ``Xc`` itself otherwise."""
+    gap = lambda x: fine.gap(u0, prm, x)
+    pressure = lambda x: fine.pressure(u0, x)
+    limit = LINE_MISFIT * options.error_tol
+    with np.errstate(all="ignore"):
+        w = interpolation_weights(Xc, gap, pressure, prm, options.order)
+        if not np.max(w, initial=0.0) > MISFIT_KEPT * limit:
+            return Xc
+        return interpolated_nodes(Xc, gap, pressure, prm, limit, 2.0 * options.min_cell,
+                                  options.order)
 
 
 def _less(detail, minus, prm, fine):
@@ -582,7 +614,8 @@ class _Film(Discretisation):
         two = self._two_grid(case, prm, options, problem, u0, restart, on_moved)
         if two is not None:
             if two[0] is not problem:
-                kept["continued"] += ", refined where its coarser mesh's gap asks"
+                kept["continued"] += (", refined where its coarser mesh's gap or the "
+                                      "predicted state asks")
                 kept.pop("continued_from2", None)
                 before = kept.pop("continued_from", None)
                 if before is not None:
@@ -616,8 +649,10 @@ class _Film(Discretisation):
         mesh (the thin-film rule at cells twice as long, :func:`continued.planned_nodes`),
         the coarse mesh is refined and solved again and the fine mesh is that one bisected
         (the mesh decided before the fine solve, as a cold start's: on the sweep, two points
-        whose fine solve had the driver refine and solve again). Returns ``(fine, u0, info,
-        (coarse, state))``."""
+        whose fine solve had the driver refine and solve again). Before the coarse solve,
+        the coarser mesh's cells that miss the predicted state are bisected once some cell
+        misses it plainly (:func:`_misfit_kept`, :data:`MISFIT_KEPT`). Returns ``(fine, u0,
+        info, (coarse, state))``."""
         kept = restart.coarse
         if kept is None or options.method != "newton" or not options.estimate:
             return None
@@ -626,6 +661,8 @@ class _Film(Discretisation):
         Xc, Zc = coarser_nodes(fine.X, (-e, e)), coarser_nodes(fine.Z)
         if Xc is None or Zc is None:
             return None
+        if options.adapt and options.order == 2:
+            Xc = _misfit_kept(Xc, fine, u0, prm, options)
         coarse = fine.variant(X=Xc, Z=Zc)
         # the previous point's two states on the moved meshes (the DOFs keep their meaning:
         # values and slopes at the same nodes), carried to this point's meshes if others
