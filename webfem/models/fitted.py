@@ -220,17 +220,14 @@ def _predict(G: np.ndarray, fit: dict, stack: Stack | None,
         Y, scalars = fit["kernel"](x), fit.get("scalars", ())
     S = G[:, fg.GROUPS.index("S")]
     H_c = S * np.log(G[:, fg.GROUPS.index("c")])
-    E, E_min = fg.baseline_sigmas(G)
-    E_center = E[:, n // 2].copy()
     # the fit is the remainder over the physical baseline in the fit's gap variable,
     # log((H - H_c) / S + FLOOR) (fit_groups.gap_to_fit; the baseline is never below H_c):
-    # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR), one exp, no log
+    # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR) = F e^Y + K, one exp, no
+    # log, F and K the baseline's (fit_groups.baseline_factors)
+    F, K, E_center, E_min = fg.baseline_factors(G)
     H = np.exp(Y[:, :n], out=out["H"])
-    E += fg.FLOOR_SIGMAS
-    H *= E
-    H -= fg.FLOOR_SIGMAS
-    H *= S[:, None]
-    H += H_c[:, None]
+    H *= F
+    H += K[:, None]
     H_low = H.min(axis=1)
     out["P"][...] = Y[:, n:2 * n]
     if fit.get("scalar_names"):
