@@ -42,8 +42,8 @@ from ..fem.scaling import FoilParameters
 from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
-           "baseline", "baseline_sigmas", "baseline_factors", "softplus", "gap_to_fit", "fit_to_gap",
-           "gap_to_asinh", "asinh_to_gap", "share_to_fit", "fit_to_share",
+           "baseline", "baseline_sigmas", "baseline_factors", "softplus", "gap_to_fit",
+           "fit_to_gap", "gap_to_asinh", "asinh_to_gap", "share_to_fit", "fit_to_share",
            "outside", "physics_refusal", "group_array", "case_columns", "groups_of_columns",
            "COLUMNS"]
 

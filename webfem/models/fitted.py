@@ -99,11 +99,12 @@ def coefficients(path: str | None = None) -> dict:
 
 #: The type the kernels' distances' product, radial function and weight products are
 #: evaluated in (:class:`Stack`; the coordinates from the unit box's middle): the hold-out
-#: answers move by up to 7.5e-5, 1.3e-4, 6.0e-6 and 1.2e-6 of webfem's error measures
-#: (h_center, h_min, mu, contact share) against float64 throughout (fitted variables: the
-#: gaps' 3.1e-5, the pressures' 9.4e-4), under a thousandth of the smallest stated error,
-#: mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times |y| at
-#: the median); the stated errors are measured through it (docs/fit.md, "Speed").
+#: answers move by up to 7.8e-5, 6.4e-5, 6.0e-6 and 3.6e-6 of webfem's error measures
+#: (h_center, h_min, mu, contact share) against float64 throughout, 100,000 random points
+#: of the box by up to 2.3e-4 (at most 1.5e-4 of their stated errors; the fitted
+#: variables: the gaps' 3.9e-5, the pressures' 1.0e-3), under a thousandth of the stated
+#: errors, mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times
+#: |y| at the median); the stated errors are measured through it (docs/fit.md, "Speed").
 RADIAL = np.float32
 
 
