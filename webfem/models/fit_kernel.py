@@ -193,10 +193,9 @@ class Stack:
     """Several :class:`Kernel` s of one of the :data:`STACKED` kinds (each its own centres
     and length scales) evaluated in one pass: one matrix product gives every kernel's
     squared distances (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x, each kernel's |x/l|^2 and 1
-    side by side), one
-    sweep of the radial function covers all the centres, then each kernel's weights on its
-    own columns; the outputs side by side, in the kernels' order. The same values as calling
-    each kernel to rounding, with the per-call costs paid once.
+    side by side), one sweep of the radial function covers all the centres, then each
+    kernel's weights on its own columns; the outputs side by side, in the kernels' order.
+    The same values as calling each kernel to rounding, with the per-call costs paid once.
 
     ``radial``: the type the distances' product, the radial function (the Matern kernel's
     sqrt, base-2 exponential and polynomial) and the weight products are evaluated in. In float32 the
@@ -257,7 +256,8 @@ class Stack:
         with blas_one_thread():
             return self.evaluate(x, chunk)
 
-    def evaluate(self, x: np.ndarray, chunk: int = CHUNK, *, clamp: bool = False) -> np.ndarray:
+    def evaluate(self, x: np.ndarray, chunk: int = CHUNK, *,
+                 clamp: bool = False) -> np.ndarray:
         """The outputs at unit-box points ``x`` (n, m), BLAS's threads as the caller left
         them (:meth:`__call__` sets one from :data:`ONE_THREAD_FROM` points; threads
         evaluating blocks of points side by side set it once around them all).
