@@ -414,6 +414,26 @@ def test_the_stacked_kernels_are_each_kernel_side_by_side():
                                atol=bound)
 
 
+def test_a_root_of_a_square_below_zero_is_taken_again_clamped():
+    """The float32 Matern stack takes the squared distances' root unclamped: where rounding
+    leaves a square below 0 (a point at a centre) the root is NaN, and evaluate takes that
+    point again with |.|, to the bits a clamped evaluation gives; the others are untouched."""
+    from webfem.models.fit_kernel import CHUNK
+    stack = fitted.coefficients()["stack"]
+    centres = np.vstack([k.centres for k in stack.kernels])
+    with np.errstate(invalid="ignore"):
+        raw = stack._evaluate(centres, CHUNK, False)
+    bad = np.isnan(raw).any(axis=1)
+    assert 0 < bad.sum() < len(centres)          # the path is taken, not everywhere
+    out = stack(centres)
+    assert np.isfinite(out).all()
+    assert np.array_equal(out, stack.evaluate(centres, clamp=True))
+    assert np.array_equal(out[~bad], raw[~bad])
+    # each point its own: a centre alone gives its row's bits
+    i = int(np.flatnonzero(bad)[0])
+    assert np.array_equal(stack(centres[i:i + 1])[0], out[i])
+
+
 def test_the_compressed_fit_is_the_gp_mean_with_every_centre_and_spreads_them():
     from webfem.models.fit_kernel import matern52
     from webfem.studies import fit_build as fb
@@ -550,6 +570,23 @@ def test_many_points_are_answered_alone_whatever_the_threads_and_the_batch():
         for i, a in zip((0, fitted.BLOCK, len(G) - 1), alone):
             np.testing.assert_allclose(a[k][0], one[k][i], rtol=1e-12, atol=1e-14)
     assert np.array_equal(part["region"], one["region"][fitted.BLOCK - 5:])
+
+
+def test_the_baseline_factors_are_the_baseline_in_sigmas():
+    """predict reads the gap as F e^Y + K from fit_groups.baseline_factors, fewer passes
+    for the same baseline: F = S (E + FLOOR), K = H_c - FLOOR S, and E at the centre node
+    and of the smallest gap, E from baseline_sigmas (to rounding: sums that cancel where
+    the web lands are grouped otherwise)."""
+    G = fc.design(2048, seed=13)
+    E, E_min = fg.baseline_sigmas(G)
+    F, K, E_center, E_low = fg.baseline_factors(G)
+    S = G[:, fg.GROUPS.index("S")]
+    H_c = S * np.log(G[:, fg.GROUPS.index("c")])
+    np.testing.assert_allclose(F, S[:, None] * (E + fg.FLOOR_SIGMAS), rtol=1e-12, atol=0)
+    np.testing.assert_allclose(K, H_c - fg.FLOOR_SIGMAS * S, rtol=1e-15, atol=0)
+    np.testing.assert_allclose(E_center, E[:, len(fg.NODES) // 2], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(E_low, E_min, rtol=1e-12, atol=1e-12)
+    assert (E.min() < 1e-3) and (E.max() > 1e3)          # resting and flying both checked
 
 
 def test_the_read_out_is_the_fit_variables_inverse():

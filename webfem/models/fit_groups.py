@@ -42,8 +42,8 @@ from ..fem.scaling import FoilParameters
 from ..physics.friction import SLIP_COEFFICIENT
 
 __all__ = ["GROUPS", "DOMAIN", "KB_FLOOR", "NODES", "WEIGHTS", "groups_of", "coordinates",
-           "baseline", "baseline_sigmas", "softplus", "gap_to_fit", "fit_to_gap",
-           "gap_to_asinh", "asinh_to_gap", "share_to_fit", "fit_to_share",
+           "baseline", "baseline_sigmas", "baseline_factors", "softplus", "gap_to_fit",
+           "fit_to_gap", "gap_to_asinh", "asinh_to_gap", "share_to_fit", "fit_to_share",
            "outside", "physics_refusal", "group_array", "case_columns", "groups_of_columns",
            "COLUMNS"]
 
@@ -87,11 +87,51 @@ def softplus(z):
     numpy's vectorised exp and log1p (logaddexp's loop is scalar: 0.42 against 0.06 us a
     point on the 33 nodes)."""
     z = np.asarray(z, float)
-    t = np.negative(np.abs(z))
+    t = np.copysign(z, -1.0)                  # -|z| in one pass
     np.exp(t, out=t)
     np.log1p(t, out=t)
     t += np.maximum(z, 0.0)
     return t
+
+
+#: The nodes from the wrap's entry, and a row of ones: the right factor of the products that
+#: give the baseline's linear parts (:func:`baseline_factors`).
+_U1 = np.vstack([NODES + 0.5, np.ones(N_NODES)])
+
+
+def baseline_factors(G: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`baseline_sigmas` as :func:`webfem.models.fitted.predict` reads it, in fewer
+    passes over the (n, nodes) arrays: the gap at the nodes is H = F e^Y + K for the fit's
+    remainder Y (:func:`fit_to_gap` of Y plus the baseline's :func:`gap_to_fit`), so this
+    gives F = S (E + FLOOR_SIGMAS) (n, nodes), K = H_c - FLOOR_SIGMAS S (n,), and E at the
+    centre node and of the smallest gap (n,), E the baseline's height over the contact
+    gap in sigmas. The same as from :func:`baseline_sigmas` to rounding (F within 1e-13
+    relative, E within 1e-12 sigma where the web lands and the film's terms cancel:
+    tests/test_fitted.py): with the gap's own two (times F, plus K), 14 passes over the
+    (n, nodes) arrays where that function and the gap's algebra took 19 (docs/fit.md,
+    "Speed")."""
+    G = np.asarray(G, float)
+    g = {k: G[:, i] for i, k in enumerate(GROUPS)}
+    S = g["S"]
+    H_c = S * np.log(g["c"])
+    # 1 + 6 H0^2 (beta / lam^2) u and (Kb u + H_c) / S, u the nodes from the entry, each as
+    # one product (a pass where the outer product and the sum took two)
+    t = np.column_stack([(6.0 * H0**2) * g["beta"] / g["lam"] ** 2, np.ones(len(G))]) @ _U1
+    np.sqrt(t, out=t)
+    np.divide((H0 / S)[:, None], t, out=t)          # the edge-drained film over S
+    q = np.column_stack([g["Kb"] / S, H_c / S]) @ _U1
+    t -= q                                           # z = (fluid - H_c) / S
+    # softplus(z) (above) with its work array reused
+    np.copysign(t, -1.0, out=q)
+    np.exp(q, out=q)
+    np.log1p(q, out=q)
+    np.maximum(t, 0.0, out=t)
+    t += q                                           # E
+    E_center = t[:, N_NODES // 2].copy()
+    t += FLOOR_SIGMAS
+    t *= S[:, None]
+    low = (H0 / np.sqrt(1.0 + (6.0 * H0**2) * g["beta"] / g["lam"] ** 2) - g["Kb"]) * EXIT
+    return t, H_c - FLOOR_SIGMAS * S, E_center, softplus((low - H_c) / S)
 
 
 def baseline_sigmas(G: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -104,6 +104,12 @@ STACKED = {"matern52": 5.0 / math.log(2.0) ** 2, "gaussian": -0.5, "cauchy": 0.5
 #: numpy float64 would take the float32 passes to float64 (numpy's type promotion).
 _LN2 = math.log(2.0)
 MATERN_A, MATERN_B, LN2_3 = 3.0 / _LN2, 3.0 / _LN2 ** 2, _LN2 ** 2 / 3.0
+#: The same polynomial about -MATERN_A / 2, as :class:`Stack` evaluates it: with w = -(q +
+#: MATERN_H), q^2 + MATERN_A q + MATERN_B = w^2 + MATERN_C and 2^-q = 2^MATERN_H 2^w, so
+#: one pass gives both the exponential's argument and the polynomial's variable (six passes
+#: a centre where the form above took eight: docs/fit.md, "Speed"); MATERN_C > 0, so the
+#: sum has no cancellation, and 2^MATERN_H goes into the weights with LN2_3.
+MATERN_H, MATERN_C = 0.5 * MATERN_A, MATERN_B - 0.25 * MATERN_A ** 2
 
 
 @dataclass(frozen=True)
@@ -186,10 +192,10 @@ class Kernel:
 class Stack:
     """Several :class:`Kernel` s of one of the :data:`STACKED` kinds (each its own centres
     and length scales) evaluated in one pass: one matrix product gives every kernel's
-    squared distances (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x^2, x and 1 side by side), one
-    sweep of the radial function covers all the centres, then each kernel's weights on its
-    own columns; the outputs side by side, in the kernels' order. The same values as calling
-    each kernel to rounding, with the per-call costs paid once.
+    squared distances (|x/l|^2 - 2 x.c/l^2 + |c/l|^2, with x, each kernel's |x/l|^2 and 1
+    side by side), one sweep of the radial function covers all the centres, then each
+    kernel's weights on its own columns; the outputs side by side, in the kernels' order.
+    The same values as calling each kernel to rounding, with the per-call costs paid once.
 
     ``radial``: the type the distances' product, the radial function (the Matern kernel's
     sqrt, base-2 exponential and polynomial) and the weight products are evaluated in. In float32 the
@@ -212,17 +218,23 @@ class Stack:
         # kept to tell whether a fit still holds these kernels (fitted.predict)
         self.kernels = tuple(kernels)
         self.radial = np.dtype(radial)
-        # the Matern polynomial's factor goes into the weights (_matern52)
-        scale = 1.0 / LN2_3 if self.kind == "matern52" else 1.0
+        # the Matern polynomial's factors go into the weights (_matern52)
+        scale = 1.0 / (LN2_3 * 2.0 ** MATERN_H) if self.kind == "matern52" else 1.0
         self._shift = SHIFT if self.radial != np.float64 else 0.0
         cols, self._blocks, self._trends = [], [], []
+        # each kernel's |x/l|^2 is one number a point, the same for all its centres: one
+        # column of the coordinates' side per kernel (computed there, in float64) and a row
+        # of the product's other side that picks it for that kernel's centres, so the
+        # product is m + len(kernels) + 1 deep, not 2m + 1 (the float32 products' terms
+        # then round once, not once per coordinate)
+        self._inv2 = np.array([1.0 / k.scales ** 2 for k in kernels])
         start = out = 0
-        for k in kernels:
-            inv2 = 1.0 / k.scales ** 2
+        for j, k in enumerate(kernels):
             c = k.centres - self._shift
-            cols.append(np.vstack([np.repeat(inv2[:, None], len(c), axis=1),
-                                   -2.0 * (c * inv2).T,
-                                   np.sum(c ** 2 * inv2, axis=1)[None, :]]))
+            pick = np.zeros((len(kernels), len(c)))
+            pick[j] = 1.0
+            cols.append(np.vstack([-2.0 * (c * self._inv2[j]).T, pick,
+                                   np.sum(c ** 2 * self._inv2[j], axis=1)[None, :]]))
             _, _, w, t0, t1 = k._prepared
             self._blocks.append((slice(start, start + len(k.centres)),
                                  slice(out, out + w.shape[1]),
@@ -244,10 +256,31 @@ class Stack:
         with blas_one_thread():
             return self.evaluate(x, chunk)
 
-    def evaluate(self, x: np.ndarray, chunk: int = CHUNK) -> np.ndarray:
+    def evaluate(self, x: np.ndarray, chunk: int = CHUNK, *,
+                 clamp: bool = False) -> np.ndarray:
         """The outputs at unit-box points ``x`` (n, m), BLAS's threads as the caller left
         them (:meth:`__call__` sets one from :data:`ONE_THREAD_FROM` points; threads
-        evaluating blocks of points side by side set it once around them all)."""
+        evaluating blocks of points side by side set it once around them all).
+
+        The Matern kernel's square root takes the squared distances as the product gives
+        them: where a point is within the product's rounding of a centre a square may come
+        out a little below 0, its root NaN, and so the point's outputs. Those points alone
+        are evaluated again with the squares clamped (``clamp``: |.|, a pass over every
+        centre that the rest skip), so every point's answer is the same function of its own
+        row as before, NaN-free for finite ``x``."""
+        with np.errstate(invalid="ignore"):     # the NaN roots, taken again below
+            out = self._evaluate(x, chunk, clamp)
+        if self.kind == "matern52" and not clamp:
+            # a NaN output is a NaN root (or a NaN input, which gives NaN again): found by
+            # each row's sum, a product (0.008 against isnan's 0.03 us a point; a sum
+            # overflowing to inf - inf only takes a point again, to the same bits)
+            again = np.flatnonzero(np.isnan(out @ np.ones(self.n_outputs)))
+            if again.size:
+                out[again] = self._evaluate(x[again], chunk, True)
+        return out
+
+    def _evaluate(self, x: np.ndarray, chunk: int, clamp: bool) -> np.ndarray:
+        """:meth:`evaluate`'s pass, the Matern squares clamped or not (``clamp``)."""
         n = len(x)
         out = np.empty((n, self.n_outputs))
         f32 = self.radial != np.float64
@@ -255,22 +288,25 @@ class Stack:
         # padding's rows 0
         c = chunk if f32 else min(chunk, n)
         m = x.shape[1]
-        xx = np.zeros((-(-n // c) * c if f32 else n, 2 * m + 1), self.radial)
+        xx = np.zeros((-(-n // c) * c if f32 else n, self._A.shape[0]), self.radial)
         xs = x - self._shift
-        np.multiply(xs, xs, out=xx[:n, :m], casting="same_kind")
-        xx[:n, m:-1] = xs
+        xx[:n, :m] = xs
+        xx[:n, m:-1] = np.square(xs) @ self._inv2.T       # |x/l|^2 of each kernel
         xx[:, -1] = 1.0
         # one set of work arrays per call, reused by every block (a call is one thread's:
         # fitted.predict runs blocks of points on several); the squares are the radial
         # function's work array
-        d2 = r = np.empty((c, self._A.shape[1]), self.radial)
-        # phi's rows past a short last block keep an earlier block's values (or 0): finite
-        e, phi = np.empty_like(r), np.zeros_like(r)
+        d2 = np.empty((c, self._A.shape[1]), self.radial)
+        # the radial function's values end in ``phi`` (the Matern kernel's exponential's
+        # array: two work arrays, not three, stay in cache: its passes 0.91 against 1.03 us a
+        # point); its rows past a short last block keep an earlier block's values (or 0),
+        # finite or NaN: the products' rows are each their own, and those rows' are not read
+        phi = np.zeros_like(d2)
         o32 = np.empty((c, self.n_outputs), self.radial) if f32 else None
-        # a block costs about 14 numpy calls, 0.4 us a point of interpreter time (held under
-        # the GIL) against 1.7 of arithmetic: the full blocks' views are made once and
+        # a block costs about 12 numpy calls, 0.4 us a point of interpreter time (held under
+        # the GIL) against 1.5 of arithmetic: the full blocks' views are made once and
         # every call's out is positional (0.1 us a point less, the same bits)
-        full = (d2, r, e, phi)
+        full = (d2, phi, clamp)
         products = [(phi[:, cols], w, o32[:, outs]) for cols, outs, w, _ in self._blocks] \
             if f32 else None
         A, means, matmul, radial = self._A, self._means, np.matmul, self._radial
@@ -281,7 +317,7 @@ class Stack:
             # the padding's products, not its radial functions
             if f32:
                 matmul(xx[i:i + c], A, d2)
-                radial(*(full if k == c else (d2[:k], d2[:k], e[:k], phi[:k])))
+                radial(*(full if k == c else (d2[:k], phi[:k], clamp)))
                 # the whole block, whatever k: the product's shape is the block's
                 for p, w, o in products:
                     matmul(p, w, o)
@@ -289,7 +325,7 @@ class Stack:
             else:
                 dk, phik = d2[:k], phi[:k]
                 matmul(xx[i:i + k], A, dk)
-                radial(dk, dk, e[:k], phik)
+                radial(dk, phik, clamp)
                 for cols, outs, w, t0 in self._blocks:
                     o = out[i:i + k, outs]
                     matmul(phik[:, cols], w, o)
@@ -298,9 +334,9 @@ class Stack:
                 out[i:i + k, outs] += x[i:i + k] @ t1
         return out
 
-    def _radial(self, d2, r, e, phi):
-        """phi of the squared distances' product ``d2`` (overwritten) through the work
-        arrays ``r`` (:meth:`evaluate` passes ``d2`` itself) and ``e``."""
+    def _radial(self, d2, phi, clamp):
+        """phi of the squared distances' product ``d2`` (overwritten), into ``phi``;
+        ``clamp``: the Matern squares through |.| (:meth:`evaluate`)."""
         if self.kind == "gaussian":
             # e^(-r^2/2), unclamped: a coincident point's rounding above 0 gives 1 + ulp
             np.exp(d2, out=phi, dtype=self.radial, casting="unsafe")
@@ -308,20 +344,20 @@ class Stack:
             d2 += 1.0                    # 1 + r^2/2
             np.reciprocal(d2, out=phi)
         else:
-            self._matern52(d2, r, e, phi)
+            self._matern52(d2, phi, clamp)
 
     @staticmethod
-    def _matern52(d2, r, e, phi):
-        """phi = (q^2 + MATERN_A q + MATERN_B) 2^-q of d2 = q^2 (q = sqrt5 r log2(e):
-        the kernel over :data:`LN2_3`, which is in the weights), through r (for q; ``r``
-        may be ``d2`` itself, as :meth:`evaluate` passes it) and e."""
-        # rounding may leave a coincident point's square a little below 0 (|.| is as
-        # good: within the rounding)
-        np.abs(d2, r)
-        np.sqrt(r, r)
-        np.negative(r, e)
-        np.exp2(e, e)
-        np.add(r, MATERN_A, phi)
-        np.multiply(phi, r, phi)
-        np.add(phi, MATERN_B, phi)
-        np.multiply(phi, e, phi)
+    def _matern52(d2, phi, clamp=False):
+        """phi = (w^2 + MATERN_C) 2^w, w = -(q + MATERN_H), of d2 = q^2 (q = sqrt5 r
+        log2(e): the kernel over LN2_3 2^MATERN_H, which is in the weights), in six passes,
+        through ``d2`` itself (for q, then w) and ``phi`` (2^w, then phi). A square a little
+        below 0 (a point within rounding of a centre) gives NaN unless ``clamp`` (|.| first,
+        a seventh pass: :meth:`evaluate` takes those points again)."""
+        if clamp:
+            np.abs(d2, d2)
+        np.sqrt(d2, d2)
+        np.subtract(-MATERN_H, d2, d2)
+        np.exp2(d2, phi)
+        np.square(d2, d2)
+        np.add(d2, MATERN_C, d2)
+        np.multiply(phi, d2, phi)

@@ -101,11 +101,12 @@ def coefficients(path: str | None = None) -> dict:
 
 #: The type the kernels' distances' product, radial function and weight products are
 #: evaluated in (:class:`Stack`; the coordinates from the unit box's middle): the hold-out
-#: answers move by up to 7.5e-5, 1.3e-4, 6.0e-6 and 1.2e-6 of webfem's error measures
-#: (h_center, h_min, mu, contact share) against float64 throughout (fitted variables: the
-#: gaps' 3.1e-5, the pressures' 9.4e-4), under a thousandth of the smallest stated error,
-#: mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times |y| at
-#: the median); the stated errors are measured through it (docs/fit.md, "Speed").
+#: answers move by up to 7.8e-5, 6.4e-5, 6.0e-6 and 3.6e-6 of webfem's error measures
+#: (h_center, h_min, mu, contact share) against float64 throughout, 100,000 random points
+#: of the box by up to 2.3e-4 (at most 1.5e-4 of their stated errors; the fitted
+#: variables: the gaps' 3.9e-5, the pressures' 1.0e-3), under a thousandth of the stated
+#: errors, mostly through the gaps' kernel, whose weights cancel (sum |w phi| is 680 times
+#: |y| at the median); the stated errors are measured through it (docs/fit.md, "Speed").
 RADIAL = np.float32
 
 
@@ -222,17 +223,14 @@ def _predict(G: np.ndarray, fit: dict, stack: Stack | None,
         Y, scalars = fit["kernel"](x), fit.get("scalars", ())
     S = G[:, fg.GROUPS.index("S")]
     H_c = S * np.log(G[:, fg.GROUPS.index("c")])
-    E, E_min = fg.baseline_sigmas(G)
-    E_center = E[:, n // 2].copy()
     # the fit is the remainder over the physical baseline in the fit's gap variable,
     # log((H - H_c) / S + FLOOR) (fit_groups.gap_to_fit; the baseline is never below H_c):
-    # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR), one exp, no log
+    # so the gap is H_c + S ((baseline's E + FLOOR) e^Y - FLOOR) = F e^Y + K, one exp, no
+    # log, F and K the baseline's (fit_groups.baseline_factors)
+    F, K, E_center, E_min = fg.baseline_factors(G)
     H = np.exp(Y[:, :n], out=out["H"])
-    E += fg.FLOOR_SIGMAS
-    H *= E
-    H -= fg.FLOOR_SIGMAS
-    H *= S[:, None]
-    H += H_c[:, None]
+    H *= F
+    H += K[:, None]
     H_low = H.min(axis=1)
     out["P"][...] = Y[:, n:2 * n]
     if fit.get("scalar_names"):
