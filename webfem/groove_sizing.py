@@ -106,6 +106,15 @@ class GrooveDesign:
     def to_dict(self) -> dict:
         return {**asdict(self), "warnings": list(self.warnings)}
 
+    def csv_row(self) -> dict:
+        """The row as the map's CSV holds it (:data:`MAP_COLUMNS`: ``solver_message``, the
+        warnings joined by " | "), for its copies in other units; then ``feasible`` and
+        ``message`` (the copies' columns before they followed the CSV's)."""
+        d = asdict(self)
+        return {k: d[k] for k in MAP_COLUMNS if k in d} | {
+            "solver_message": self.message, "warnings": " | ".join(self.warnings),
+            "feasible": self.feasible, "message": self.message}
+
 
 @dataclass(frozen=True)
 class LossSpeed:
@@ -136,6 +145,13 @@ class LossSpeed:
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+    def csv_row(self) -> dict:
+        """The row as the loss-speed CSV holds it (:data:`LOSS_COLUMNS`: ``loss_speed``),
+        for its copies in other units; then ``speed`` (the copies' column before)."""
+        d = asdict(self)
+        return {k: d[k] for k in LOSS_COLUMNS if k in d} | {"loss_speed": self.speed,
+                                                              "speed": self.speed}
 
     def refused_partway(self) -> bool:
         """Whether the scan ended below the range asked without finding a speed: its

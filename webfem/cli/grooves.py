@@ -13,7 +13,7 @@ from ..keys import key_meta
 from ..groove_sizing import (DEFAULT_DEPTH, DEFAULT_LAND_FRACTIONS, DEFAULT_PITCHES,
                              DEFAULT_SPEED_FACTORS, LOSS_LAND_FRACTIONS, LOSS_PITCHES,
                              LOSS_SCAN, LOSS_SPEED_RANGE, best_designs, check_arguments,
-                             groove_map, loss_speed_map)
+                             LOSS_COLUMNS, MAP_COLUMNS, groove_map, loss_speed_map)
 from ..units import convert, display, to_si, unit_label
 from .common import (HELP_FORMATTER, Progress, add_case_arguments, add_quiet_argument,
                      add_units_argument, case_from, local_workers, model_options,
@@ -270,7 +270,9 @@ def _after_map(args, case, options, lists, folder, stem, designs) -> int:
     from ..io.groove_charts import groove_chart, loss_speed_chart
     from ..io.tables import write_in_units
 
-    copy = write_in_units([d.to_dict() for d in designs], folder / f"{stem}.csv", args.units)
+    # the copies hold the SI tables' columns, converted
+    copy = write_in_units([d.csv_row() for d in designs], folder / f"{stem}.csv", args.units,
+                          MAP_COLUMNS + ("feasible", "message"))
     if copy is not None:
         print(f"wrote {copy}", file=sys.stderr)
     chart = groove_chart(designs, args.mu_min, folder / f"{stem}.png", best, units=args.units)
@@ -287,8 +289,9 @@ def _after_map(args, case, options, lists, folder, stem, designs) -> int:
                                 workers=_workers(args.workers), notice=_notice)
         with saved_if_interrupted(losses, folder / f"{stem}_loss.csv", "geometries"):
             print(f"wrote {folder / f'{stem}_loss.csv'}", file=sys.stderr)
-            copy = write_in_units([x.to_dict() for x in losses],
-                                  folder / f"{stem}_loss.csv", args.units)
+            copy = write_in_units([x.csv_row() for x in losses],
+                                  folder / f"{stem}_loss.csv", args.units,
+                                  LOSS_COLUMNS + ("speed",))
             if copy is not None:
                 print(f"wrote {copy}", file=sys.stderr)
             chart = loss_speed_chart(losses, args.mu_min, folder / f"{stem}_loss.png",
