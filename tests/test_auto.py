@@ -61,11 +61,15 @@ def test_choices_differ_where_they_should():
     assert wide_fast["model_used"] == "closed-form"        # inside Eq. 21's range, loose tol
     assert narrow["model_used"] == "fe2d"                   # lambda = 4.8: edge leakage
     assert "outside Eq. 21" in narrow["why"] and "fe1d: estimated mu error" in narrow["why"]
-    # looser, the fit of 2-D solutions (it carries the edge leakage) answers: a flexible
-    # web landing, whose stated mu error (its cell's 95th percentile) is 0.22
-    fitted = webfem.solve(CASES[4], model="auto", tol=0.3, quantity="mu")
-    assert fitted["model_used"] == "fitted" and fitted["error_mu"] <= 0.3
-    assert "flexible web" in fitted["error_basis"]
+    # looser, the fit of 2-D solutions (it carries the edge leakage) answers. At tol 0.3 it
+    # did, stating its cell's 0.22 against a true mu error of 0.43 (fe2d's 0.0336, the fit's
+    # 0.0479); stated from its nearest hold-out points (docs/fit.md) it states 0.57, and
+    # auto passes over it to fe2d
+    passed = webfem.solve(CASES[4], model="auto", tol=0.3, quantity="mu")
+    assert passed["model_used"] == "fe2d" and "fitted: estimated mu error" in passed["why"]
+    fitted = webfem.solve(CASES[4], model="auto", tol=0.6, quantity="mu")
+    assert fitted["model_used"] == "fitted" and 0.43 <= fitted["error_mu"] <= 0.6
+    assert "hold-out points nearest it" in fitted["error_basis"]
     assert landed["model_used"] == "fe1d"                   # web on its asperities
     # the rejection says what the closed form does under its physics: with the friction from
     # the loads it rests the web at h_c (it used to say "lands the web (h -> 0)" here too)

@@ -48,6 +48,7 @@ from ..physics.validity import answer_warnings
 from ..result import Diagnostics, Fields, Result, refused
 from ..summary import Summary
 from . import fit_groups as fg
+from . import fit_stated
 from .fit_file import read_fit
 from .fit_kernel import ONE_THREAD_FROM, STACKED, Kernel, Stack, blas_one_thread
 from .options import FittedOptions
@@ -95,6 +96,10 @@ def coefficients(path: str | None = None) -> dict:
             # the share's variable (fit_groups.share_to_fit) where the file names it, else
             # the share itself, clipped (the files before it)
             "share_variable": str(d.get("share_variable", "share")),
+            # the errors stated per point from the nearest hold-out points (fit_stated);
+            # a file without them states its table's, per region
+            "local": ({k: d[k] for k in fit_stated.KEYS}
+                      if all(k in d for k in fit_stated.KEYS) else None),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
             "scalar_names": fit["scalar_names"]}
 
@@ -362,15 +367,28 @@ METHOD = ("fit of fe2d solutions (Matern-5/2 kernels, subset-of-regressors GP me
           "Eqs. 10-13, 28-31 on its profile")
 
 
+def stated_errors(G: np.ndarray, pr: dict, fit: dict) -> np.ndarray:
+    """The stated errors (n, 4; :data:`QUANTITIES`) at groups ``G`` with predictions ``pr``
+    (:func:`predict`): from the nearest hold-out points where the fit has them
+    (:mod:`webfem.models.fit_stated`), else the table's row of each point's region."""
+    local = fit.get("local")
+    if local is None:
+        return fit["errors"][pr["region"]]
+    x = fit_stated.unit_of_groups(G, fit["lo"], fit["hi"])
+    coords = fit_stated.coordinates(x, pr["H_min"] / G[:, fg.GROUPS.index("S")],
+                                    pr["share"])
+    return fit_stated.stated(coords, local)
+
+
 def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
-             options: FittedOptions) -> list[Result]:
-    """The results of ``cases`` (their columns ``v``, their predicted profiles ``pr``):
-    everything evaluated on arrays, then one summary and one set of fields (rows of the
-    arrays) per case; ``solve_time_s`` is left 0 for the caller."""
+             options: FittedOptions, G: np.ndarray) -> list[Result]:
+    """The results of ``cases`` (their columns ``v``, groups ``G`` and predicted profiles
+    ``pr``): everything evaluated on arrays, then one summary and one set of fields (rows
+    of the arrays) per case; ``solve_time_s`` is left 0 for the caller."""
     r = read_profiles(v, pr["H"], pr["P"], pr["H_min"], pr["s_min"], pr.get("H_center"),
                       pr.get("share"))
     traction = traction_summaries(cases, r["mu"], r["contact_share"])
-    errors = fit["errors"][pr["region"]]
+    errors = stated_errors(G, pr, fit)
     lam, beta = v["lam"], v["beta"]
     per_case = {k: r[k] for k in ("h_center", "h_inlet", "h_outlet", "h_min", "x_min",
                                   "contact_share", "share_boundary", "share_mixed",
@@ -489,13 +507,19 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
     t0 = time.perf_counter()
     v, G, _ = _checked_columns([case], many=False)
     fit = coefficients(options.coefficients)
-    res = _results([case], v, predict(G, fit), fit, options)
+    res = _results([case], v, predict(G, fit), fit, options, G)
     return _timed(res, time.perf_counter() - t0)[0]
 
 
 def _basis(fit: dict, region: int) -> str:
-    return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "
-            f"{region_name(fit, region)}; {fit['info']}")
+    local = fit.get("local")
+    if local is None:
+        return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "
+                f"{region_name(fit, region)}; {fit['info']}")
+    return (f"fit: the mean error against fe2d of the {int(local['local_k'])} hold-out "
+            "points nearest it (in the groups and its predicted smallest gap and contact "
+            "share), scaled to the hold-out's 95th percentile (docs/fit.md, \"Stated errors "
+            f"per point\"); its region {region_name(fit, region)}; {fit['info']}")
 
 
 def solve(case: Case, options: FittedOptions | None = None, **values) -> Result:
@@ -521,7 +545,7 @@ def solve_many(cases, options: FittedOptions | None = None) -> list[Result]:
     keep = [i for i in range(len(cases)) if i not in refusals]
     if refusals and keep:
         v, G = {k: a[keep] for k, a in v.items()}, G[keep]
-    answers = iter(_results([cases[i] for i in keep], v, predict(G, fit), fit, options)
+    answers = iter(_results([cases[i] for i in keep], v, predict(G, fit), fit, options, G)
                    if keep else [])
     res = [refused(c, NAME, refusals[i]) if i in refusals else next(answers)
            for i, c in enumerate(cases)]
