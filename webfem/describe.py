@@ -18,7 +18,9 @@ def error_text(s) -> str | None:
     """The stated errors of a summary on one line, or None where it states none:
     ``h_center 0.00032, h_min 4.1e-05, mu 0.0003, contact share 8.5e-05 (...)``: two digits
     (one rounded 1.62 to "2")."""
-    values = {q: s.get(f"error_{q}") for q in _NAMES}
+    # NaN: not stated (a fit with too few hold-out points), as None
+    values = {q: v if (v := s.get(f"error_{q}")) is not None and v == v else None
+              for q in _NAMES}
     if all(v is None for v in values.values()):
         return None
     parts = [f"{_NAMES[q]} {v:.2g}" for q, v in values.items() if v is not None]
@@ -259,6 +261,7 @@ def describe(result) -> str:
     lines.append(f"  stated error: {errors}; {s.error_basis}" if errors else
                  "  stated error: none (no mesh error estimate could be made: the warning "
                  "below says why; treat the answer as unverified)" if failed else
+                 f"  stated error: none ({s.error_basis})" if s.error_basis else
                  "  stated error: none (no estimate was made)")
     if s.mesh is not None:
         lines.append(f"  {s.method or ''} on {s.mesh}; residual {s.residual:.2e}; contact "

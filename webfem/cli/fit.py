@@ -3,6 +3,7 @@ dimensionless groups, resumable) and the fit, written as the coefficients file."
 
 from __future__ import annotations
 
+import sys
 import textwrap
 import time
 from pathlib import Path
@@ -98,6 +99,13 @@ def run(args) -> int:
                              extra_csv=extra if extra.is_file() else None)
     report.update(campaign_seconds=solved, total_seconds=time.perf_counter() - t0,
                   coefficients=str(out))
+    from ..models.fitted import MIN_HOLDOUT
+    report["errors_stated"] = report["holdout"] >= MIN_HOLDOUT
+    if not report["errors_stated"]:
+        print(f"webfem fit build: warning: {report['holdout']} hold-out points, fewer than "
+              f"the {MIN_HOLDOUT} the fitted model states its errors from: its answers with "
+              f"these coefficients state none (NaN) and auto does not take them; the "
+              f"percentiles below are {report['holdout']} errors' luck", file=sys.stderr)
     if args.json:
         print_json(report, units=False)
         return 0

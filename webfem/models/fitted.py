@@ -101,7 +101,26 @@ def coefficients(path: str | None = None) -> dict:
             "local": ({k: d[k] for k in fit_stated.KEYS}
                       if all(k in d for k in fit_stated.KEYS) else None),
             "physics": str(d["physics"]), "info": str(d["info"]), "scalars": scalars,
-            "scalar_names": fit["scalar_names"]}
+            "scalar_names": fit["scalar_names"],
+            "holdout_points": len(d["holdout_values"]) if "holdout_values" in d else None}
+
+
+#: The fewest hold-out points a fit states its errors from: with fewer, a percentile or a
+#: neighbours' mean is one or two errors' luck (a 6-point campaign, 1 held out, stated h_min
+#: 0.46 where its error was 2.5), so its answers state none (NaN) and auto never takes them.
+MIN_HOLDOUT = 20
+
+
+def unstated(fit: dict) -> str | None:
+    """Why ``fit`` (:func:`coefficients`) states no errors, or None: fewer than
+    :data:`MIN_HOLDOUT` hold-out points."""
+    n = fit.get("holdout_points")
+    if n is None or n >= MIN_HOLDOUT:
+        return None
+    return (f"the fit states no errors: its errors come from {n} hold-out point"
+            f"{'' if n == 1 else 's'}, fewer than the {MIN_HOLDOUT} a statement needs (`webfem "
+            "fit build` holds out every fifth design point: --points "
+            f"{5 * MIN_HOLDOUT} or more)")
 
 
 #: The type the kernels' distances' product, radial function and weight products are
@@ -371,6 +390,8 @@ def stated_errors(G: np.ndarray, pr: dict, fit: dict) -> np.ndarray:
     """The stated errors (n, 4; :data:`QUANTITIES`) at groups ``G`` with predictions ``pr``
     (:func:`predict`): from the nearest hold-out points where the fit has them
     (:mod:`webfem.models.fit_stated`), else the table's row of each point's region."""
+    if unstated(fit):
+        return np.full((len(G), len(QUANTITIES)), np.nan)
     local = fit.get("local")
     if local is None:
         return fit["errors"][pr["region"]]
@@ -425,6 +446,7 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
     h, loc = r["h"], r["loc"]
     # the tail warnings' Gaussian h_c in one vectorised solve, not one per case
     gaussian = tail_gaussian_gaps(cases, per_case["h_c"], per_case["contact_share"])
+    none_stated = unstated(fit)
     out = []
     for i, (case, row, tr, regime, region, kind) in enumerate(zip(
             cases, zip(*columns), traction, regimes, pr["region"].tolist(), kinds)):
@@ -432,7 +454,8 @@ def _results(cases: list[Case], v: dict[str, np.ndarray], pr: dict, fit: dict,
         tail = tail_warning(case, values.get("h_c"), values.get("contact_share"),
                             gaussian[i])
         summary = Summary(**values, **tr, **fixed, regime=regime, effects=effects[kind],
-                          warnings=tuple(answer_warnings(case, values["h_min"], tail)),
+                          warnings=tuple(answer_warnings(case, values["h_min"], tail))
+                          + ((none_stated,) if none_stated else ()),
                           error_basis=basis[region] + (ONSET_BASIS if idle[i] else ""))
         fields = Fields(x=x[i], h=h[i], chi_c=loc["chi_c"][i], mu_c=loc["mu_c"][i],
                         mu_f=loc["mu_f"][i], mu=loc["mu"][i], regime=loc["regime"][i])
@@ -512,6 +535,8 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
 
 
 def _basis(fit: dict, region: int) -> str:
+    if unstated(fit):
+        return f"fit: {unstated(fit)}; {fit['info']}"
     local = fit.get("local")
     if local is None:
         return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "
