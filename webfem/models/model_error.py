@@ -224,7 +224,8 @@ def closed_form_errors(case: Case, summary) -> dict[str, float]:
     at the exit as far as the asperities carry the line load there), and
     :func:`bending_edge_share` added to the contact share's error (mu_cc times it to mu's).
     The board on a 50 mm roller, 0.3 m wide, at 15 m/s (Dn 99): mu stated 0.41 against a
-    true 1.29 before, now 2.1; h_min 0.61 against 2.66, now 3.35."""
+    true 1.29 before, 2.1 with these terms; h_min 0.61 against 2.66, 3.35 with them (3.28
+    and 4.61 with the air's end above)."""
     scale = case.h_scale
     R, B = case.roller.radius, case.B
     h_c, kappa = summary["h_c"], summary["kappa"]
