@@ -3,6 +3,7 @@ and how far the true error exceeds the stated one (webfem.models.model_error's b
 
     python benchmarks/model_error_families.py board     # closed form, 36 board points
     python benchmarks/model_error_families.py board-check   # closed form, 42 other board points
+    python benchmarks/model_error_families.py board-small   # closed form, 12 board points
     python benchmarks/model_error_families.py bundled   # closed form, 90 points of 10 cases
     python benchmarks/model_error_families.py low       # fe1d, 24 base points at 0.3-2 m/s
     python benchmarks/model_error_families.py fitted    # fitted, 25 base points at 10-30 m/s
@@ -10,7 +11,9 @@ and how far the true error exceeds the stated one (webfem.models.model_error's b
 ``board``: the bundled board on rollers of R 0.03-0.2 m, 0.1-1 m wide, at 5, 15 and 30 m/s
 (points without a closed-form answer are skipped). ``board-check``: the board on other
 rollers (R 0.02-0.3 m), widths (0.2, 0.6 m), speeds (10, 20, 25 m/s), wraps (45, 180 deg)
-and tensions (400, 1500 N/m), none of them a ``board`` point. ``bundled``: every bundled
+and tensions (400, 1500 N/m), none of them a ``board`` point. ``board-small``: the board on rollers of 25-60 mm at
+12-22 m/s (and 700, 1300 N/m), where its film runs out of air in the wrap, none of them a
+``board`` or ``board-check`` point. ``bundled``: every bundled
 case but the board and the grooved ones at 0.5, 1 and 1.5x its speeds and 0.7, 1 and 1.4x
 its tension. ``low``: the base case at 0.3-2 m/s,
 tensions 50-130 N/m, 35 and 100 mm wide. ``fitted``: the base case at 10-30 m/s, tensions
@@ -44,6 +47,12 @@ FAMILIES = {
            for R in (0.05, 0.2) for U in (15.0, 30.0) for a in (45.0, 180.0)]
         + [{"roller.radius": R, "roller.speed": U, "web.speed": U, "web.tension": T}
            for R in (0.05, 0.2) for U in (15.0, 30.0) for T in (400.0, 1500.0)])]),
+    "board-small": ("closed-form", [as_case("board").updated(u) for u in (
+        [{"roller.radius": R, "web.width": 0.4, "roller.speed": U, "web.speed": U}
+         for R in (0.025, 0.035, 0.045) for U in (12.0, 18.0, 22.0)]
+        + [{"roller.radius": 0.03, "roller.speed": 18.0, "web.speed": 18.0, "web.tension": T}
+           for T in (700.0, 1300.0)]
+        + [{"roller.radius": 0.06, "roller.speed": 18.0, "web.speed": 18.0}])]),
     "bundled": ("closed-form", [
         c.updated({"roller.speed": c.roller.speed * f, "web.speed": c.web.speed * f,
                    "web.tension": c.web.tension * g})
