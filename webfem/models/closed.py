@@ -275,10 +275,11 @@ def summary_from_arrays(values: dict, i: int, case: Case, elapsed: float,
 
 #: How the closed form's stated errors are obtained (:mod:`webfem.models.model_error`).
 ERROR_BASIS = ("model: Eq. 21's fit against the wide-web gap 0.643 R eps^(2/3) with "
-               "1.48/lambda edge leakage, Eshel-Elrod's exit constriction, the pressure-"
-               "driven shear and the bending it leaves out (the gap lowered by up to 0.035 "
-               "h_scale per sqrt(Dn), the wrap ends' line loads sqrt(D T)/R on the "
-               "asperities) (doubled); no mesh")
+               "1.48/lambda edge leakage, Eshel-Elrod's exit constriction and the contact "
+               "gathered there, the web resting at h_c where Eq. 21's film has no air left "
+               "(its gap <= 0), the pressure-driven shear and the bending it leaves out (the "
+               "gap lowered by up to 0.035 h_scale per sqrt(Dn), the wrap ends' line loads "
+               "sqrt(D T)/R on the asperities) (doubled); no mesh")
 
 
 def evaluate_case(case: Case) -> int:
