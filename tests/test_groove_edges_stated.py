@@ -42,6 +42,9 @@ def test_a_cells_stated_errors_include_its_left_out_edges():
     assert "model: the web's edges the periodic cell leaves out" in r["error_basis"]
     assert "added to each stated error" in r["groove_domain"]
     assert r.summary.periodic_cell
+    # asked for by name where auto would not answer with it: a warning says so too
+    assert any(w.startswith("periodic cell: the web's edges it leaves out") and
+               "above edge_tol = 0.01" in w for w in r["warnings"])
 
 
 def test_the_cell_answers_only_where_its_stated_error_meets_edge_tol():
