@@ -69,8 +69,9 @@ def test_stored_mesh_is_what_webfem_writes_now(stem, part, written):
 @pytest.mark.parametrize("stem", STEMS)
 def test_stored_meshes_are_what_the_readme_says(stem):
     """The web line: sorted nodes over the wrap plus 40 R eps^(1/3) each side, nodes on
-    the wrap edges; the film: the web's nodes times nodes across the half width, one
-    quadrilateral per pair of intervals. Checked on the files themselves, so a generator
+    the wrap edges; the film: the web's nodes times nodes across the half width (a grooved
+    roller's periodic cell, land centre to groove centre), one quadrilateral per pair of
+    intervals. Checked on the files themselves, so a generator
     that went wrong with its stored copy would still be caught."""
     case = load_case(ROOT / "cases" / f"{stem}.toml")
     web, film = (stored(f"{stem}_{part}.vtu") for part in PARTS)
@@ -84,7 +85,10 @@ def test_stored_meshes_are_what_the_readme_says(stem):
     assert [c.type for c in web.cells] == ["line"] and len(web.cells[0].data) == x.size - 1
     y = np.unique(film.points[:, 1])
     assert np.array_equal(np.unique(film.points[:, 0]), x) and not np.any(film.points[:, 2])
-    assert y[0] == 0.0 and y[-1] == pytest.approx(case.web.width / 2, rel=1e-12)
+    # a grooved roller's film: the periodic cell fe2d solves first (issue 38: it was the
+    # smooth half width, a mesh no grooved solve uses)
+    across = case.roller.groove_pitch if case.grooved else case.web.width
+    assert y[0] == 0.0 and y[-1] == pytest.approx(across / 2, rel=1e-12)
     assert len(film.points) == x.size * y.size
     assert [c.type for c in film.cells] == ["quad"]
     assert len(film.cells[0].data) == (x.size - 1) * (y.size - 1)

@@ -179,6 +179,10 @@ class Summary(ReadOnlyMapping):
     error_mu: float | None = None
     error_contact_share: float | None = None
     error_basis: str | None = None
+    #: A periodic groove cell (fe2d): the part of each ``error_*`` that is the web's edges it
+    #: leaves out (twice their estimated effect, :func:`webfem.models.groove_domain.
+    #: edge_error`); None on every other domain and model.
+    error_edges: float | None = None
     #: auto: the model that answered, its estimated relative error in ``quantity`` against
     #: ``tolerance``, and why it was chosen.
     model_used: str | None = None
@@ -216,6 +220,12 @@ class Summary(ReadOnlyMapping):
     def to_json(self, **kwargs) -> str:
         """The summary as strict JSON text (no NaN or Infinity)."""
         return json.dumps(self.to_dict(), allow_nan=False, **kwargs)
+
+    @property
+    def periodic_cell(self) -> bool:
+        """Whether the answer is a grooved roller's periodic cell (land centre to groove
+        centre, the web's edges left out), not the width of the web."""
+        return (self.groove_domain or "").startswith("periodic cell")
 
     def __repr__(self) -> str:
         return (f"Summary(model={self.model!r}, h_center={self.h_center:.4g}, "

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
-from ..models.start_mesh import start_meshes
+from ..models.start_mesh import film_domain, start_meshes
 from .common import (HELP_FORMATTER, add_case_arguments, case_from, model_options,
                      options_epilog, output_folder)
 
@@ -16,7 +16,10 @@ def add_parser(subparsers) -> None:
                      "models start from them",
         description="Write CASE_web.vtu (x nodes along the web) and CASE_film.vtu (x times "
                     "the width nodes), in metres, before the models refine where the film is "
-                    "thin. The meshes follow fe2d's options entry, level, symmetry and "
+                    "thin. On a grooved roller the film mesh spans the domain fe2d solves: "
+                    "the periodic groove cell (land centre to groove centre) under grooves = "
+                    "auto, which solves it first, else the domain grooves names. "
+                    "The meshes follow fe2d's options entry, level, symmetry and "
                     "width_fine (--model fe2d or auto, the default); --model fe1d writes its "
                     "own web mesh alone (options entry, level: it solves no film across the "
                     "width). The closed form and the fitted model solve no mesh: refused.",
@@ -45,8 +48,11 @@ def run(args) -> int:
     folder = output_folder(args.out, "--out")
     x, z = start_meshes(case, options)
     stem = Path(args.case).stem
-    paths = (write_meshes(x, z, folder, stem) if model == "fe2d" else
-             [write_web_mesh(x, folder, stem)])
+    domain = film_domain(case, options) if model == "fe2d" else None
+    paths = (write_meshes(x, z, folder, stem, cell=domain.startswith("the periodic"))
+             if model == "fe2d" else [write_web_mesh(x, folder, stem)])
     for path in paths:
         print(f"wrote {path}")
+    if domain is not None:
+        print(f"film mesh across: {domain}")
     return 0

@@ -181,8 +181,9 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     points or log-spaced ones get markers (:func:`needs_markers`).
 
     The regime boundaries h = h_c and h = 3 sigma are grey lines on the gap axis, labelled
-    there, one label per distinct value (close values share one). The legend sits outside
-    the axes, on the right. ``units``: the swept parameter and the gaps are drawn in that
+    there, one label per distinct value (close values share one); gaps below 0 (a web
+    resting compressed) extend the gap axis below 0, where h = 0 is drawn and named. The
+    legend sits below the axes, clear of the title. ``units``: the swept parameter and the gaps are drawn in that
     system's units. ``log_x``: a logarithmic parameter axis (None: when the values are
     log-spaced, :func:`log_spaced`). A row's ``model_used`` (auto's choice) is named in the
     legend.
@@ -262,6 +263,15 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
     clipped = bool(edges) and bool(core) and max(core) > 0.0 and max(edges) > 3.0 * max(core)
     if clipped:
         ax2.set_ylim(0.0, float(display_values([1.5 * max(core)], "thin", units)[0]))
+    # a web resting compressed on its asperities has gaps below 0 (wide grooves, a slow
+    # roller): the axis reaches down to them, with the roller's crest drawn, rather than
+    # cutting the curves off at 0 without a word
+    drawn_gaps = [h for r in drawn for h in (_f(r, k) for k, _, _ in _GAP_STYLES)
+                  if np.isfinite(h)]
+    lowest = min(drawn_gaps, default=0.0)
+    if lowest < 0.0:
+        ax2.set_ylim(bottom=float(display_values([1.1 * lowest], "thin", units)[0]))
+        ax2.axhline(0.0, color="k", lw=0.8, zorder=1)
     ax.grid(True, alpha=0.3)
     h1, l1 = ax.get_legend_handles_labels()
     # the gap styles once, in black: the colours already name the series
@@ -277,8 +287,14 @@ def sweep_chart(rows: list[dict], path: str | Path, title: str = "",
         styles.append((Line2D([], [], color="none"),
                        f"(edge gaps up to {display_values([max(edges)], 'thin', units)[0]:.4g}"
                        f" {thin}: off the top of the gap axis)"))
+    if lowest < 0.0:
+        styles.append((Line2D([], [], color="k", lw=0.8),
+                       f"h = 0 (below: the web rests compressed on its asperities; "
+                       f"lowest {display_values([lowest], 'thin', units)[0]:.4g} {thin})"))
+    # below the axes, in two columns: on the right, the long entries (a series' model,
+    # the edge gaps, h = 0) took half the canvas's width and ran into the title
     fig.legend(h1 + [h for h, _ in styles], l1 + [t for _, t in styles], fontsize=7,
-               loc="outside right upper")
+               loc="outside lower center", ncol=2)
     _level_labels(ax2, levels, thin)
     stated = stated_errors_text(rows)
     if title or stated:

@@ -71,15 +71,24 @@ def film_quad_mesh(x, z, half_wrap: float | None = None):
     return meshio.Mesh(pts, [("quad", quads)], point_data=_point_data(pts, half_wrap))
 
 
-def write_meshes(x, z, folder, stem: str, half_wrap: float | None = None) -> list[Path]:
+#: The film's Y on a periodic groove cell (field data, replacing :data:`COORDINATES`'s).
+CELL_Y = ("Y = across one periodic groove cell from a land centre (0) to a groove centre "
+          "(pitch/2) [m] (film; the web's edges left out)")
+
+
+def write_meshes(x, z, folder, stem: str, half_wrap: float | None = None,
+                 cell: bool = False) -> list[Path]:
     """Write ``STEM_web.vtu`` (nodes ``x`` [m]) and ``STEM_film.vtu`` (``x`` times the width
     nodes ``z`` [m]) into ``folder`` (created if missing); returns the two paths.
 
     ``half_wrap``: the wrap's half length R B / 2 [m], if known, adds the in-wrap flag and
-    the wrap edges to the files."""
+    the wrap edges to the files. ``cell``: ``z`` spans a periodic groove cell, not the
+    width (the field data say so)."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     meaning = dict(COORDINATES)
+    if cell:
+        meaning = {(CELL_Y if k.startswith("Y =") else k): v for k, v in meaning.items()}
     if half_wrap is not None:
         meaning[f"wrap edges at X = -+{half_wrap:.6g} m (R B / 2)"] = float(half_wrap)
     return [write_mesh(web_line_mesh(x, half_wrap), folder / f"{stem}_web.vtu", meaning),

@@ -40,6 +40,7 @@ from pathlib import Path
 
 from ..describe import contact_gap_text, error_text, idler_verdict, judged_text, resting_text
 from ..files import write_text
+from ..models.model_error import SAFETY
 from ..units import ROLES, convert, unit_label
 
 __all__ = ["write_report", "report_html", "page_warnings", "SECTIONS", "SUMMARY_UNITS"]
@@ -173,6 +174,9 @@ def _model(result, asked: str | None = None) -> str:
     errors = error_text(s)
     lines.append(f"<p>Stated error: {escape(errors)}; {escape(s.error_basis or '')}.</p>"
                  if errors else "<p>Stated error: none (no estimate was made).</p>")
+    if s.groove_domain is not None:
+        lines.append(f"<p>Across the width: {escape(domain_headline(s))}. "
+                     f"{escape(_sentence(s.groove_domain))}.</p>")
     effects = ", ".join(s.effects) or "none beyond the paper's model"
     lines.append(f"<p>Effects included: {escape(effects)}. Physics: "
                  f"<span class=key>{escape(result.case.model.physics)}</span>.</p>")
@@ -185,6 +189,25 @@ def _model(result, asked: str | None = None) -> str:
         lines.append(f"<p>{'Every other' if changed else 'Every'} option of "
                      f"{escape(s.model)} at its default.</p>")
     return "\n".join(lines)
+
+
+def domain_headline(s) -> str:
+    """The domain a grooved answer solved across the width, in a few words: a periodic cell
+    with what its left-out edges are estimated to change (``error_edges`` is twice it)."""
+    if not s.periodic_cell:
+        return s.groove_domain.split(":")[0]
+    if s.error_edges is None:
+        return "periodic cell, the web's edges left out"
+    return (f"periodic cell, edges estimated to change it by {s.error_edges / SAFETY:.3g} "
+            f"(left out; twice that, {s.error_edges:.3g}, is in each stated error)")
+
+
+def film_caption(s) -> str:
+    """The film picture's caption start: what its width shows."""
+    if s.periodic_cell:
+        return ("Film pressure over one groove pitch (the periodic cell, land centre to "
+                "groove centre, mirrored; the web's edges left out), ")
+    return "Film pressure over the full width, "
 
 
 def _summary(result, units: str = "si") -> str:
@@ -329,7 +352,7 @@ def write_report(result, folder, *, title: str = "", charts=(), name: str = "rep
     used = result.summary.model_used or result.summary.model
     with tempfile.TemporaryDirectory(prefix=".webfem-report-", dir=folder) as tmp:
         film = film_figure(result, Path(tmp) / "film.png", units=units)
-        caption = (("Film pressure over the full width, " if result.film is not None else "")
+        caption = ((film_caption(result.summary) if result.film is not None else "")
                    + f"gap along the centre line and local friction in the wrap ({used}).")
         html = report_html(result, title=title, version=__version__,
                            pictures=[(film, caption), *charts], units=units, asked=asked)

@@ -51,6 +51,12 @@ MEANING = {"regime 0 = boundary (h < h_c)": 0.0, "regime 1 = mixed (h_c <= h <= 
            "mu; above mu_cc where the asperities carry more than T_eff/R": 0.0}
 
 
+#: The film's Y where a grooved roller's periodic cell answered: mirrored about its land
+#: centre, the file shows one groove pitch, not the web's width.
+CELL_Y = ("Y = across one groove pitch from a land centre [m] (film: the periodic cell, land "
+          "centre to groove centre, mirrored; the web's edges left out)")
+
+
 def _field_data(values: dict) -> bytes:
     """A VTK ``<FieldData>`` block of Float64 arrays (text is kept out of the values: meshio
     cannot read VTK string arrays)."""
@@ -166,7 +172,8 @@ def write_result(result, folder, stem: str | None = None, field_data: dict | Non
 
     Arrays carry their units in their names (``"h [m]"``, ``"p-p_a [Pa]"``); ``regime`` is
     an integer whose names, with the coordinates' meaning and the headline numbers, are in
-    the field data (:data:`MEANING`); the film covers the full width. The field data also
+    the field data (:data:`MEANING`); the film covers the full width (a grooved roller's
+    periodic cell: one groove pitch, :data:`CELL_Y`). The field data also
     hold the reported ``h_min [m]`` and ``x_min [m]``, the smallest gap at the file's
     nodes and, where the two differ (the minimum lies between nodes), a note saying so
     (:data:`H_MIN_KEYS`, :data:`H_MIN_NOTE`). An unconverged result
@@ -180,6 +187,8 @@ def write_result(result, folder, stem: str | None = None, field_data: dict | Non
     if not result["converged"]:
         stem += "_NOT_CONVERGED"
     data = MEANING | _summary_data(result) | dict(field_data or {})
+    if result.summary.periodic_cell:
+        data = {(CELL_Y if k.startswith("Y =") else k): v for k, v in data.items()}
     paths = []
     if result.film is not None:
         film = film_mesh(result)

@@ -314,13 +314,14 @@ class FE2DOptions(FE1DOptions):
     grooves: str = option("auto", "grooved roller: the periodic cell land centre to groove "
                           "centre (the web's edges left out), the full width with its edge "
                           "lands, the edge strip (the edge lands, the interior as its "
-                          "periodic cell), or auto (the cell where the edges' estimated "
-                          "effect is within edge_tol, else the strip, the full width on a "
-                          "web too narrow for one)", "choice",
+                          "periodic cell), or auto (the cell where its stated error, twice the "
+                          "edges' estimated effect plus error_tol, is within edge_tol, else "
+                          "the strip, the full width on a web too narrow for one)", "choice",
                           choices=("auto", "cell", "full", "strip"))
-    edge_tol: float = option(0.01, "grooves = auto: the largest estimated effect of the web's "
-                             "edges (relative, as auto's tol) with which the periodic cell "
-                             "answers", "float", lo=0.0, hi=1.0, lo_open=True)
+    edge_tol: float = option(0.01, "grooves = auto: the largest stated error (relative, as "
+                             "auto's tol) with which the periodic cell answers: twice the "
+                             "web's edges' estimated effect, which its stated errors "
+                             "include, plus error_tol", "float", lo=0.0, hi=1.0, lo_open=True)
     strip_width: float | None = option(None, "grooves = strip: the edge strip's width, scaled "
                                        "units (none: 24, what grooves that do not vent "
                                        "need; auto sets it from the periodic cell's "
