@@ -37,3 +37,19 @@ def test_a_pitch_without_a_width_is_solved_smooth_and_says_so(model):
     said = [w for w in r["warnings"] if "solved smooth" in w]
     assert said and "roller.groove_pitch = 0.00127 m set, but roller.groove_width = 0" in said[0]
     assert not any("solved smooth" in w for w in webfem.solve("base", model=model)["warnings"])
+
+
+def test_a_sag_past_the_groove_floor_says_the_groove_is_closed():
+    """A 10 mm groove under the base web sags 270 um held flat, past its 250 um floor: the
+    warning said only 'sags' (user38)."""
+    from webfem.models.groove_domain import sag_warning
+    case = webfem.load_case("base_grooved").updated(
+        {"roller.groove_pitch": 0.04, "roller.groove_width": 0.01})
+    text = sag_warning(case, 1.7e-6)
+    assert "held flat on the lands the web would reach the groove's floor" in text
+    # 2.5 mm grooves sag 1.1 um (5.3 um if free to turn): far above a 250 um floor
+    wide = webfem.load_case("base_grooved").updated(
+        {"roller.groove_pitch": 5e-3, "roller.groove_width": 2.5e-3})
+    assert "floor" not in sag_warning(wide, -0.03e-6)
+    deep_enough = case.updated({"roller.groove_depth": 1e-3})
+    assert "if free to turn on the lands the web would reach" in sag_warning(deep_enough, 1.7e-6)

@@ -237,4 +237,17 @@ def sag_warning(case: Case, h_min: float) -> str:
             f"E = web.modulus_md = {w.modulus_md:.3g} Pa, t = {w.thickness * 1e6:.3g} um, "
             f"nu = {POISSON:g}; webfem holds the web flat across the width and does not model "
             "it bending into its grooves: the film over the land edges is not what it "
-            "computes (narrower grooves or a thicker web keep the sag small)")
+            "computes (narrower grooves or a thicker web keep the sag small)"
+            + _floor_text(sag, case.roller.groove_depth))
+
+
+def _floor_text(sag: float, depth: float) -> str:
+    """What a sag at least the groove's ``depth`` [m] means, clamped (``sag``) or free to
+    turn on the lands (5 x): the web reaches the groove's floor and the groove no longer
+    vents ("" when it stays above the floor either way)."""
+    if 5.0 * sag < depth:
+        return ""
+    how = "held flat on the lands" if sag >= depth else "if free to turn on the lands"
+    return (f"; {how} the web would reach the groove's floor (roller.groove_depth = "
+            f"{depth * 1e6:.3g} um): the groove is closed, not a vent, and the answer does "
+            "not describe that roller")
