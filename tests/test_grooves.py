@@ -277,6 +277,25 @@ def test_auto_solves_the_edge_strip_where_the_edges_matter():
     assert est > 0.01                      # above edge_tol: the cell did not answer
 
 
+def test_the_edge_strips_x_mesh_is_planned_on_the_periodic_cell(monkeypatch):
+    """The strip starts on the 1-D start's x nodes with the periodic cell's refinement
+    rounds replayed (env38: its own rounds bisected as the cell's had, each a solve of the
+    whole strip) and its own rounds not made again: the answer within the stated errors of the strip that makes its own rounds (the same
+    case as :func:`test_auto_solves_the_edge_strip_where_the_edges_matter`)."""
+    c = BASE_GROOVED.updated(STRIP_CASE)
+    planned = auto.solve(c)
+    said = planned.diagnostics.solver["cell_web"]
+    assert "the cell's refinement rounds asked for" in said
+    assert planned["adapt_rounds"] == 0
+    monkeypatch.setattr(fe2d, "_replayed_nodes", lambda X0, *args: X0)
+    own = auto.solve(c)
+    assert "refinement rounds asked for" not in own.diagnostics.solver["cell_web"]
+    assert own["adapt_rounds"] > 0
+    for q in ("h_center", "h_min", "mu"):
+        err = abs(planned[q] - own[q]) / abs(own[q])
+        assert err <= planned[f"error_{q}"] + own[f"error_{q}"], (q, err)
+
+
 @pytest.mark.slow
 def test_the_edge_strip_answers_as_the_full_width():
     """The strip (the outer lands of each half solved, the periodic interior as its weighted

@@ -176,6 +176,15 @@ def _refine(disc: Discretisation, case: Case, problem, u, info: SolveInfo, prm, 
     """The refinement rounds of :func:`_solve_and_refine` from a solved state: up to
     ``options.adapt``, fewer once a round has settled (:data:`ADAPT_SETTLED`)."""
     rounds = 0
+    if getattr(problem, "planned", False) and options.estimate and info.converged \
+            and not admissibility(case, problem, u, prm):
+        # a mesh decided before the solve from the rounds made on the same film (fe2d's
+        # edge strip on the periodic cell's, :func:`webfem.models.fe2d._replayed_nodes`):
+        # not refined again (a round that adds a few nodes costs a solve of 0.2 M
+        # unknowns; the mesh error estimate that follows checks the mesh). An answer
+        # that is not admissible is refined as any other (the driver's remedy)
+        info.adapt_rounds = 0
+        return problem, u, info
     settle = options.adapt_settle and options.mesh is None and options.nodes is None
     before = None
     while info.converged and rounds < options.adapt:

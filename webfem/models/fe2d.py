@@ -338,7 +338,9 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
     """The edge strip's start: the periodic cell solved on the strip's x nodes from its
     answer carried over (plain Newton: the same film on another mesh), so that the web the
     strip starts from is a discrete solution there. First on ``problem``'s x nodes (the 1-D
-    start's); where the cell does not converge there, on the cell answer's own x nodes
+    start's) with the cell's refinement replayed on them (:func:`_replayed_nodes`: the
+    strip's x mesh planned on the cell; ``problem`` moved to them), then on those nodes
+    alone; where the cell does not converge there, on the cell answer's own x nodes
     coarsened (every other node, the wrap edges kept) until the strip has at most
     :data:`CELL_MESH_DOFS` unknowns, with ``problem`` moved to them. Returns ``(problem,
     cell problem, cell state)``, or None (neither converged or both are inadmissible: the
@@ -355,7 +357,9 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
     X = cell.X
     while X is not None and X.size * per_node > CELL_MESH_DOFS:
         X = coarser_nodes(X, (-e, e))
-    tried = [problem.X] + ([X] if X is not None and X.size > problem.X.size else [])
+    planned = _replayed_nodes(problem.X, cell.X, per_node, options.adapt)
+    tried = ([planned] if planned.size > problem.X.size else []) + [problem.X] + (
+        [X] if X is not None and X.size > problem.X.size else [])
     for X in tried:
         on = cell if np.array_equal(X, cell.X) else cell.variant(X=X)
         uc = u
@@ -369,6 +373,43 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
         moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
         return moved, on, uc
     return None
+
+
+def _replayed_nodes(X0: np.ndarray, Xc: np.ndarray, per_node: float,
+                    rounds: int) -> np.ndarray:
+    """The strip's x nodes planned on the periodic cell's answer: ``X0`` (the 1-D start's,
+    from which the cell's mesh ``Xc`` was refined) with its cells bisected where the cell's
+    were, one bisection a round, up to ``rounds`` (``options.adapt``) and while the strip,
+    ``per_node`` unknowns an x node, stays within :data:`MAX_DOFS` (the driver's cap on its
+    rounds). ``Xc`` itself where it all fits.
+
+    Why: the rule where the film is thin (:func:`webfem.models.refine.adapted_nodes`)
+    reads the web's gap, and a strip's web (its width average dominated by the periodic
+    interior) is the cell's: on envelope #115 (a 0.61 m PET strip) the strip's own rounds
+    bisected its x cells 81,455 -> 105,919 -> 143,727 -> 195,435 unknowns, the ratios of
+    the cell's rounds (1.30, 1.36, 1.36), and on #67 (a board strip) 139,987 -> 162,163 ->
+    198,199 as the cell's 3,031 -> 3,511 -> 4,291: each round a Newton solve of the strip
+    (10-17 s CPU). The strip's own rounds are then not made (its mesh error estimate checks
+    the mesh): on #67 one would have added 8,316 unknowns for another 0.2 M-unknown solve.
+
+    >>> _replayed_nodes(np.array([0.0, 1.0, 2.0]), np.array([0.0, 0.25, 0.5, 1.0, 2.0]),
+    ...                 1.0, 6).tolist()
+    [0.0, 0.25, 0.5, 1.0, 2.0]
+    >>> _replayed_nodes(np.array([0.0, 1.0, 2.0]), np.array([0.0, 0.25, 0.5, 1.0, 2.0]),
+    ...                 1.0, 1).tolist()
+    [0.0, 0.5, 1.0, 2.0]
+    """
+    X = np.asarray(X0, float)
+    Xc = np.asarray(Xc, float)
+    for _ in range(rounds):
+        mids = 0.5 * (X[1:] + X[:-1])
+        at = np.clip(np.searchsorted(Xc, mids), 0, Xc.size - 1)
+        near = np.minimum(np.abs(Xc[at] - mids), np.abs(Xc[np.maximum(at - 1, 0)] - mids))
+        mark = near <= 1e-9 * np.diff(X)
+        if not mark.any() or (X.size + mark.sum()) * per_node > MAX_DOFS:
+            break
+        X = np.sort(np.concatenate([X, mids[mark]]))
+    return X
 
 
 def _coarse_full_width(case: Case, prm, options: FE2DOptions, problem, u0):
@@ -488,6 +529,7 @@ class _Film(Discretisation):
             # the cell's web (its film pressure is made consistent with it before the
             # coupled steps: ``direct`` stays False), solved on the x mesh of the start
             cell_p, cell_u = self.cell.state("problem"), self.cell.state("state")
+            x_nodes = problem.X
             laid = _cell_on_mesh(case, prm, options, cell_p, cell_u, problem) \
                 if problem.strip else None
             if laid is not None:
@@ -498,6 +540,17 @@ class _Film(Discretisation):
             u0[problem.nP:] = web[problem.nP:]
             kept["cell_web"] = "the web of the periodic cell's answer" + (
                 ", solved on this x mesh" if laid is not None else "")
+            planned = laid is not None and problem.X.size > x_nodes.size
+            if planned and options.estimate:
+                # the cell's refinement rounds stand for the strip's (:func:`_replayed_nodes`):
+                # not made again on the strip, whose mesh error estimate checks the mesh
+                problem.planned = True
+                kept["cell_web"] += (", on the x mesh the cell's refinement rounds asked "
+                                     "for")
+            # the full width solved on its mesh coarsened first; not a strip: on its planned
+            # mesh the fine Newton from the coarsened strip's answer took as many steps as
+            # from the cell's web (envelope #67: 4; #115 more; 4-5 s CPU each at 0.2 M
+            # unknowns; env38)
             first = None if problem.strip else _coarse_full_width(case, prm, options,
                                                                   problem, u0)
             if first is not None:

@@ -512,9 +512,9 @@ def _quartered_note(out: MeshError, n: int, n_halved: int, n_quartered: int,
             f"x){over}")
 
 
-def _cap_note(out: MeshError, n: int, tol: float) -> str:
+def _cap_note(out: MeshError, n: float, tol: float) -> str:
     return (f"mesh error estimate {_worst(out.errors)} exceeds the target error_tol = "
-            f"{tol:g}; the finer mesh it asks for ({n:,} unknowns) is beyond webfem's cap of "
+            f"{tol:g}; the finer mesh it asks for ({n:,.0f} unknowns) is beyond webfem's cap of "
             f"{MAX_DOFS:,.0f}: the estimates state this answer's error")
 
 
