@@ -279,6 +279,13 @@ def test_overrides_that_mend_a_case_file_apply(tmp_path):
     with pytest.raises(InputError) as err:
         load_case(tmp_path / "c.toml", {"air.roughness_flow": "none", "web.tension": -1.0})
     assert "web.tension" in str(err.value) and "c.toml" not in str(err.value)
+    # an alias in the file and its key in the override (or the other way) are one key
+    thick = tmp_path / "thick.toml"
+    thick.write_text('[roller]\ndiameter = 0.002\n[web]\nthickness = 0.0005\n')
+    with pytest.raises(InputError, match="t/\\(2R\\)"):
+        load_case(thick)
+    assert load_case(thick, {"roller.radius": 0.05}).roller.radius == 0.05
+    assert load_case(thick, {"roller.diameter": 0.1}).roller.radius == 0.05
     # the file's own fault, with a harmless override, still names the file
     with pytest.raises(InputError, match="c.toml"):
         load_case(path, {"roller.speed": 5.0})
@@ -291,3 +298,23 @@ def test_the_valley_shear_bound_without_a_cut_off_is_infinite_and_silent():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert valley_shear_bound(4e-6, 0.0) == np.inf
+
+
+def test_series_may_mend_a_base_case_refused_alone(tmp_path):
+    """A sweep whose top-level case is refused alone (no mean free path through the
+    roughness) but whose every series mends it loads (it did before that check existed);
+    a series that does not mend it is refused naming the series."""
+    path = tmp_path / "s.toml"
+    path.write_text('[air]\nmean_free_path = 0.0\n[sweep]\nparameter = "roller.speed"\n'
+                    'values = [10.0, 20.0]\n[[series]]\nlabel = "paper"\n'
+                    'model = {physics = "paper"}\n[[series]]\nlabel = "no flow"\n'
+                    'air = {roughness_flow = "none"}\n')
+    sweep = load_sweep(path)
+    assert [label for label, _ in sweep.series] == ["paper", "no flow"]
+    path.write_text(path.read_text().replace('air = {roughness_flow = "none"}',
+                                             'web = {tension = 90.0}'))
+    with pytest.raises(InputError) as err:
+        load_sweep(path)
+    text = str(err.value)
+    assert "air.mean_free_path = 0 m" in text and text.count("s.toml") == 1
+    assert "(series 'no flow')" in text

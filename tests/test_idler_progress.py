@@ -13,6 +13,12 @@ def test_the_margin_curve_reports_each_speed_solved():
     assert calls == [(1, 3), (2, 3), (3, 3)]
 
 
-def test_idler_takes_quiet(capsys):
-    assert main(["idler", "idler", "--model", "closed-form", "--num", "3", "--quiet"]) == 0
-    assert "verdict" in capsys.readouterr().out
+def test_idler_shows_progress_on_a_terminal_unless_quiet(capsys, monkeypatch):
+    import sys
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    args = ["idler", "idler", "--model", "fe1d", "--num", "2", "--max-speed", "4"]
+    assert main(args) == 0
+    assert "2/2 speeds" in capsys.readouterr().err
+    assert main(args + ["--quiet"]) == 0
+    out = capsys.readouterr()
+    assert "verdict" in out.out and "speeds," not in out.err

@@ -25,7 +25,7 @@ def test_a_table_of_the_same_run_without_rows_is_resumed_not_replaced(tmp_path):
     rows = _run(path, {"model": "m", "parameter": "p", "a": 1}, lambda n: {"x": n + 1.0, "y": 2.0 * n, "converged": True}, told)
     assert [r["y"] for r in rows] == [0.0, 2.0]
     assert told and "resuming: none of its 2 points kept (the earlier run was stopped " \
-        "before its first)" in told[0]
+        "before any was solved)" in told[0]
     # another run's table is still replaced, and says so
     told = []
     _run(path, {"model": "m", "parameter": "p", "a": 2}, lambda n: {"x": n + 1.0, "y": 0.0, "converged": True}, told)

@@ -148,3 +148,21 @@ def test_a_web_compressed_through_its_thickness_is_refused_by_name(model):
     r = webfem.solve(BASE.updated({"web.modulus_thickness": 1e3, "web.tension": 20.0}),
                      model="fe1d")
     assert r["converged"] and not r["resting"]
+
+
+@pytest.mark.parametrize("c", [0.03, 13.0, 200.0, 2000.0])
+@pytest.mark.parametrize("hs", [-3.0, 0.0, 0.5, 50.0])
+def test_the_exponential_shear_holds_for_slip_lengths_far_above_sigma(c, hs):
+    """A slip length 2 a lambda of hundreds of sigma (a smooth film at low ambient pressure,
+    or pet_idler's 0.14 um roughness with the mean free path at its 1e-4 m limit): e^c and
+    Ei(c) overflow past c = 709, and the closed form returned NaN (review38a); against the
+    adaptive quadrature of the same integral."""
+    sigma = 1e-6
+    ls = c
+    kw = dict(epsabs=0.0, epsrel=1e-12, limit=1000)
+    below = quad(lambda t: np.exp(t) / 2 / (hs - t + ls), -np.inf, min(hs, 0.0), **kw)[0]
+    above = quad(lambda y: np.exp(y - hs) / 2 / (y + ls), 0.0, hs, **kw)[0] if hs > 0 else 0.0
+    ref = (below + above) / sigma
+    with np.errstate(all="raise"):
+        got = shear_factor(hs * sigma, sigma, c * sigma)
+    assert np.isfinite(got) and got == pytest.approx(ref, rel=1e-10)

@@ -367,7 +367,10 @@ def case_from_tables(data: Mapping[str, Any], where: str,
         # the checks across keys (e.g. the mean free path against the roughness flow) must
         # see the overrides, or a --set that mends the file's case could never be applied
         try:
-            return Case.from_dict({**flatten(tables, where), **resolve_aliases(overrides)})
+            # both resolved: the file's roller.diameter and an override's roller.radius
+            # are one key
+            return Case.from_dict({**resolve_aliases(flatten(tables, where)),
+                                   **resolve_aliases(overrides)})
         except InputError as err:
             final = err
         try:

@@ -287,7 +287,11 @@ def _values_from_spec(spec: Mapping[str, Any], where: str, parameter: str) -> An
     return space(start, stop, num).tolist()
 
 
-def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
+def _series_from_tables(case: Case | None, entries: Any, parameter: str, where: str,
+                        build=None):
+    """The ``[[series]]``' (label, case) pairs: ``case`` updated by each entry, or where
+    the base case alone is refused (``case`` None), ``build(flat)``: the file's tables with
+    the entry's keys, so the checks across keys see them (a series may mend the base)."""
     if not isinstance(entries, list) or not all(isinstance(e, Mapping) for e in entries):
         raise InputError(f"series = {show(entries)}{where} is not valid: must be [[series]] "
                          "tables (label = \"...\" and the case keys that differ)")
@@ -306,7 +310,7 @@ def _series_from_tables(case: Case, entries: Any, parameter: str, where: str):
             raise InputError(f"{parameter} = {show(flat[parameter])}{at}: {parameter} is the "
                              "swept parameter, set at every point; remove it from the series")
         try:
-            series.append((label, case.updated(flat)))
+            series.append((label, case.updated(flat) if case is not None else build(flat)))
         except InputError as err:
             raise InputError(f"{err}{at}") from None
     return series or [("base", case)]
@@ -360,7 +364,7 @@ def is_numeric_parameter(parameter: str) -> bool:
     return parameter == LINE_SPEED or (is_key(parameter) and is_numeric(parameter))
 
 
-def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
+def _sweep_from_dict(case: Case | None, data: Mapping[str, Any], where: str,
                      overrides: Mapping[str, Any] | None = None,
                      parameter: str | None = None, span: tuple | None = None) -> Sweep:
     spec = data.get("sweep", {})
@@ -387,7 +391,9 @@ def _sweep_from_dict(case: Case, data: Mapping[str, Any], where: str,
         values = _values_from_spec(spec, where, parameter)
     else:  # default: the paper's speed range
         values = np.linspace(0.5, 40.0, 60).tolist()
-    series = _series_from_tables(case, data.get("series", []), parameter, where)
+    series = _series_from_tables(
+        case, data.get("series", []), parameter, where,
+        lambda flat: case_from_tables(data, "", {**(overrides or {}), **flat}))
     try:
         return Sweep(parameter, values, tuple(series))
     except InputError as err:
@@ -402,6 +408,11 @@ def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None,
     quantity, e.g. ``roller.speed`` to ``line.speed``) or over ``start..stop`` (both given;
     numbers in the parameter's SI unit or text with a unit, "600 m/min")."""
     data, where = read_toml(path)
-    case = case_from_tables(data, where, overrides)
+    try:
+        case = case_from_tables(data, where, overrides)
+    except InputError:
+        if not data.get("series"):
+            raise
+        case = None     # each series may mend the base case (built from its own keys)
     span = None if start is None and stop is None else (start, stop)
     return _sweep_from_dict(case, data, where, overrides, parameter, span)

@@ -118,9 +118,9 @@ def unstated(fit: dict) -> str | None:
     if n is None or n >= MIN_HOLDOUT:
         return None
     return (f"the fit states no errors: its errors come from {n} hold-out point"
-            f"{'' if n == 1 else 's'}, fewer than the {MIN_HOLDOUT} a statement needs (`webfem "
-            "fit build` holds out every fifth design point: --points "
-            f"{5 * MIN_HOLDOUT} or more)")
+            f"{'' if n == 1 else 's'}, fewer than the {MIN_HOLDOUT} converged ones a statement "
+            f"needs: `webfem fit build` holds out every fifth design point, so about "
+            f"{5 * (MIN_HOLDOUT - n)} more converged --points")
 
 
 #: The type the kernels' distances' product, radial function and weight products are

@@ -221,17 +221,18 @@ def _exponential_shear(h, sigma, ell):
     every gap, as a read-out asks). Why: the quadrature it replaces (80 points a gap)
     matched it to 1e-11 (7.5e-9 at 37 sigma) and cost about 4 ms of a cold fe2d base
     solve's read-outs."""
-    c = ell / sigma
-    with np.errstate(under="ignore"):
-        ei_c, e1_c = expi(c), exp1(c)
+    c = np.asarray(ell / sigma, dtype=float)
+    # c's integrals scaled too: a slip length above 709 sigma (a smooth film at low ambient
+    # pressure) overflows e^c and Ei(c) (0 x inf: NaN)
+    e1_c, ei_c = _scaled_integrals(c)          # e^c E1(c), e^-c Ei(c)
     shape = np.broadcast_shapes(h.shape, c.shape)
     h, sigma, ell, c, ei_c, e1_c = (np.broadcast_to(v, shape).ravel()
                                     for v in (h, sigma, ell, c, ei_c, e1_c))
     a = (np.maximum(h, 0.0) + ell) / sigma
     e1, ei = _scaled_integrals(a)
     with np.errstate(under="ignore"):
-        up = e1 + ei - np.exp(-a) * ei_c
-        down = np.exp(np.minimum(h, 0.0) / sigma + c) * e1_c
+        up = e1 + ei - np.exp(c - a) * ei_c           # a >= c: no overflow
+        down = np.exp(np.minimum(h, 0.0) / sigma) * e1_c
     return (np.where(h >= 0.0, up, down) / (2.0 * sigma)).reshape(shape)
 
 

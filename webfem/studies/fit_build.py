@@ -36,6 +36,7 @@ import numpy as np
 
 from ..models import fit_groups as fg
 from ..models.fit_kernel import KINDS, Kernel, blas_one_thread, thin_plate
+from ..models.fit_stated import unit_of_groups
 from ..models.readout import error_scale
 
 __all__ = ["targets", "scalar_targets", "fit_kernel", "hyperparameters", "select_centres",
@@ -263,9 +264,8 @@ def fit_thin_plate(x: np.ndarray, y: np.ndarray, scales: np.ndarray,
                   weights=sol[:n], y_mean=y_mean, y_std=y_std, kind="thin-plate")
 
 
-def unit(G: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Groups as unit-box coordinates."""
-    return (fg.coordinates(G) - lo) / (hi - lo)
+#: Groups as unit-box coordinates (the benchmarks call it ``fb.unit``).
+unit = unit_of_groups
 
 
 #: The suffix of :func:`holdout_errors`' keys measured against the smaller of the

@@ -119,7 +119,7 @@ def run_points(csv_path, sig: dict, columns: Sequence[str], key_columns: Sequenc
             notice(f"{csv_path}: resuming: {len(done)} of {total} {what} already there, "
                    + (f"solving the other {len(todo)}" if todo else "nothing to solve"))
         elif notice and held and store.same_sweep:
-            why = ("the earlier run was stopped before its first" if not store.rows_found
+            why = ("the earlier run was stopped before any was solved" if not store.rows_found
                    else f"its {store.rows_found} rows did not converge: solved again")
             notice(f"{csv_path}: resuming: none of its {total} {what} kept ({why}), "
                    "solving them all")
