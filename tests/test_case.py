@@ -318,3 +318,13 @@ def test_series_may_mend_a_base_case_refused_alone(tmp_path):
     text = str(err.value)
     assert "air.mean_free_path = 0 m" in text and text.count("s.toml") == 1
     assert "(series 'no flow')" in text
+
+
+def test_a_sweep_files_own_error_is_not_blamed_on_a_series(tmp_path):
+    path = tmp_path / "t.toml"
+    path.write_text('[roller]\nspeeed = 3\n[sweep]\nparameter = "roller.speed"\n'
+                    'values = [1.0, 2.0]\n[[series]]\nlabel = "paper"\n'
+                    'model = {physics = "paper"}\n')
+    with pytest.raises(InputError) as err:
+        load_sweep(path)
+    assert "roller.speeed" in str(err.value) and "series" not in str(err.value)

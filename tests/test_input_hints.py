@@ -53,3 +53,13 @@ def test_a_sag_past_the_groove_floor_says_the_groove_is_closed():
     assert "floor" not in sag_warning(wide, -0.03e-6)
     deep_enough = case.updated({"roller.groove_depth": 1e-3})
     assert "if free to turn on the lands the web would reach" in sag_warning(deep_enough, 1.7e-6)
+
+
+def test_the_groove_floor_is_judged_with_the_land_gap():
+    """A 1 um deep groove under a web flying 0.78 um above the lands is 1.78 um down: a
+    1.35 um sag (free to turn) does not reach it (review38b)."""
+    from webfem.models.groove_domain import sag_warning
+    case = webfem.load_case("pet_idler_grooved").updated(
+        {"roller.groove_width": 1e-3, "roller.groove_depth": 1e-6})
+    assert "floor" not in sag_warning(case, 0.78e-6)
+    assert "would reach the groove's floor" in sag_warning(case, 0.0)

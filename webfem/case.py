@@ -67,6 +67,12 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+class AcrossKeys(InputError):
+    """A case refused by a check across its keys (the mean free path against the roughness
+    flow, the web's thickness against the roller's radius, the tension against the web's
+    inertia), which another key may mend: a ``--set`` or a sweep's series."""
+
+
 @dataclass(frozen=True)
 class Case:
     """A complete operating point: roller, web, wrap, air and friction constants.
@@ -101,7 +107,7 @@ class Case:
                             "[m/s] (no air is entrained otherwise)")
         t, R = self.web.thickness, self.roller.radius
         if t / (2.0 * R) > THICK_WEB_LIMIT:
-            raise InputError(
+            raise AcrossKeys(
                 f"web.thickness = {t:g} m on roller.radius = {R:g} m: t/(2R) = {t / (2 * R):.3g}"
                 f", the web would bend to an outer-fibre strain of {100 * t / (2 * R):.3g} % "
                 "and the thin-web model (its tension at the film's surface, wrap pressure "
@@ -111,7 +117,7 @@ class Case:
         if self.air.mean_free_path == 0.0 and self.roughness_flow_model == "mean-gap":
             # the air sheared between the asperities is cut off at contact only at the
             # molecular scale 2 a lambda: without it the mean Couette shear diverges
-            raise InputError(
+            raise AcrossKeys(
                 "air.mean_free_path = 0 m with air.roughness_flow = mean-gap: the air "
                 "sheared between the asperities then has no molecular cut-off and its shear "
                 "(so mu) is infinite; valid: air.mean_free_path > 0 m (6.5e-08 m at 1 atm, "
@@ -119,7 +125,7 @@ class Case:
                 "numerical floor) or model.physics = paper")
         if self.tension_eff <= 0.0:
             w = self.web
-            raise InputError(
+            raise AcrossKeys(
                 f"web.speed = {w.speed:g} m/s: the web cannot be held on the roller at that "
                 f"speed: turning it takes rho_w t U_w^2 = {self.web_inertia:.4g} N/m, at least "
                 f"its tension web.tension = {w.tension:g} N/m (raise the tension above "
@@ -134,7 +140,7 @@ class Case:
             return cls().updated(flatten(data, where))
         except InputError as err:
             if where and where not in str(err):
-                raise InputError(f"{err}{where}") from None
+                raise type(err)(f"{err}{where}") from None
             raise
 
     def updated(self, values: Mapping[str, Any]) -> "Case":

@@ -32,7 +32,7 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from .case import Case, case_from_tables, read_toml
+from .case import AcrossKeys, Case, case_from_tables, read_toml
 from .errors import InputError, show
 from .keys import flatten, is_key, is_numeric, key_meta, unknown_key, valid_keys
 from .line_speed import LINE_SPEED, holds_web_speed, line_at
@@ -410,9 +410,11 @@ def load_sweep(path: str | Path, overrides: Mapping[str, Any] | None = None,
     data, where = read_toml(path)
     try:
         case = case_from_tables(data, where, overrides)
-    except InputError:
+    except AcrossKeys:
         if not data.get("series"):
             raise
-        case = None     # each series may mend the base case (built from its own keys)
+        # a check across keys, which each series may pass (built from its own keys); any
+        # other error is the file's own, which no series mends
+        case = None
     span = None if start is None and stop is None else (start, stop)
     return _sweep_from_dict(case, data, where, overrides, parameter, span)

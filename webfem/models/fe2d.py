@@ -39,7 +39,7 @@ from .refine import FLAT_GAP, adapted_nodes, interpolated_nodes, interpolation_w
 from .fields import film_fields
 from .options import FE1DOptions, FE2DOptions
 from .outcome import Facts
-from .groove_domain import domain_text, edge_error, sag_warning, solve_grooved
+from .groove_domain import cell_answers, domain_text, edge_error, sag_warning, solve_grooved
 
 __all__ = ["FoilBearing2D", "FILM", "problem_for", "width_nodes_of", "groove_domain", "sag_warning", "solve",
            "solve_case", "NAME"]
@@ -343,7 +343,8 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
     alone; where the cell does not converge there, on the cell answer's own x nodes
     coarsened (every other node, the wrap edges kept) until the strip has at most
     :data:`CELL_MESH_DOFS` unknowns, with ``problem`` moved to them. Returns ``(problem,
-    cell problem, cell state)``, or None (neither converged or both are inadmissible: the
+    cell problem, cell state, replayed)`` (``replayed``: on the replayed nodes, not a
+    fallback), or None (neither converged or both are inadmissible: the
     cell's answer itself starts ``problem``).
 
     Why: a PET strip started on the 93 x cells of the 1-D start from the cell's answer on
@@ -371,7 +372,7 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
             if not info.converged or admissibility(case, on, uc, prm):
                 continue
         moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
-        return moved, on, uc
+        return moved, on, uc, X is tried[0] and planned.size > problem.X.size
     return None
 
 
@@ -533,14 +534,15 @@ class _Film(Discretisation):
             laid = _cell_on_mesh(case, prm, options, cell_p, cell_u, problem) \
                 if problem.strip else None
             if laid is not None:
-                problem, cell_p, cell_u = laid
+                problem, cell_p, cell_u, replayed = laid
                 problem.line_start, problem.direct = (p1, u1), False
                 u0 = problem.start_from_line(p1, u1, prm)
             web = problem.start_from_line(cell_p, cell_u, prm, pressure=False)
             u0[problem.nP:] = web[problem.nP:]
             kept["cell_web"] = "the web of the periodic cell's answer" + (
                 ", solved on this x mesh" if laid is not None else "")
-            planned = laid is not None and problem.X.size > x_nodes.size
+            # only the replayed mesh stands for the strip's rounds, not a fallback's
+            planned = laid is not None and replayed and problem.X.size > x_nodes.size
             if planned and options.estimate:
                 # the cell's refinement rounds stand for the strip's (:func:`_replayed_nodes`):
                 # not made again on the strip, whose mesh error estimate checks the mesh
@@ -827,14 +829,15 @@ class _Film(Discretisation):
             edges = {"error_edges": edge_error(why["estimate"]),
                      "edges_basis": f"the web's edges the periodic cell leaves out, twice "
                                     f"their estimated effect {why['estimate']:.3g}"}
-            if edges["error_edges"] > options.edge_tol:
+            if not cell_answers(why["estimate"], options):      # auto's own rule
                 # a cell asked for by name where auto would not answer with it: said
                 # beside the numbers, not only in the stated errors (a 1 um groove's cell
                 # was 37 % off its full width's mu without a word)
                 common["warnings"] = warnings + (
                     f"periodic cell: the web's edges it leaves out are estimated to change "
                     f"its answer by {why['estimate']:.3g} (its stated errors include "
-                    f"{edges['error_edges']:.3g}, above edge_tol = {options.edge_tol:g}): "
+                    f"{edges['error_edges']:.3g}, which with a mesh error up to error_tol = "
+                    f"{options.error_tol:g} is above edge_tol = {options.edge_tol:g}): "
                     "grooves = \"strip\" or \"full\" (or auto) solves them",)
         domain = domain_text(case, kind, problem.grooves, **why,
                              width=(case.lam - problem.Z[0]) if problem.strip else None)

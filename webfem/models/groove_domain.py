@@ -238,16 +238,20 @@ def sag_warning(case: Case, h_min: float) -> str:
             f"nu = {POISSON:g}; webfem holds the web flat across the width and does not model "
             "it bending into its grooves: the film over the land edges is not what it "
             "computes (narrower grooves or a thicker web keep the sag small)"
-            + _floor_text(sag, case.roller.groove_depth))
+            + _floor_text(sag, case.roller.groove_depth,
+                          max(h_min, 0.0) if math.isfinite(h_min) else 0.0))
 
 
-def _floor_text(sag: float, depth: float) -> str:
-    """What a sag at least the groove's ``depth`` [m] means, clamped (``sag``) or free to
-    turn on the lands (5 x): the web reaches the groove's floor and the groove no longer
-    vents ("" when it stays above the floor either way)."""
-    if 5.0 * sag < depth:
+def _floor_text(sag: float, depth: float, gap: float) -> str:
+    """What a sag at least the way down to the groove's floor means (its ``depth`` [m] below
+    the lands, plus the web's ``gap`` above them), clamped (``sag``) or free to turn on the
+    lands (5 x): the web reaches the floor and the groove no longer vents ("" when it stays
+    above the floor either way)."""
+    room = depth + gap
+    if 5.0 * sag < room:
         return ""
-    how = "held flat on the lands" if sag >= depth else "if free to turn on the lands"
-    return (f"; {how} the web would reach the groove's floor (roller.groove_depth = "
-            f"{depth * 1e6:.3g} um): the groove is closed, not a vent, and the answer does "
-            "not describe that roller")
+    how = "held flat on the lands" if sag >= room else "if free to turn on the lands"
+    return (f"; {how} the web would reach the groove's floor ({room * 1e6:.3g} um down: "
+            f"roller.groove_depth = {depth * 1e6:.3g} um below the lands, the web "
+            f"{gap * 1e6:.3g} um above them): the groove is closed, not a vent, and the "
+            "answer does not describe that roller")

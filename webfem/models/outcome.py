@@ -86,7 +86,8 @@ def build_result(disc, case: Case, problem, u, prm, info: SolveInfo, elapsed: fl
         slip_margin=t["slip_margin"], mu_onset=t["mu_onset"],
         error_h_center=e["h_center"], error_h_min=e["h_min"], error_mu=e["mu"],
         error_contact_share=e["contact_share"], error_basis=basis,
-        error_edges=facts.error_edges,
+        # no stated errors (estimate = False): no part of them either
+        error_edges=facts.error_edges if mesh_error.errors["h_center"] is not None else None,
         resting=ro.compression > 0.0, compression=ro.compression,
         n_cells=facts.n_cells, width_cells=facts.width_cells,
         land_fraction=facts.land_fraction, groove_domain=facts.groove_domain,
