@@ -740,3 +740,20 @@ def test_a_sliding_web_keeps_its_cells_mu_error():
     assert fit.summary.U_slide > 0.0
     assert "carried through" not in fit.summary.error_basis
     assert fit["error_mu"] < 1.0
+
+
+def test_the_per_point_statement_holds_on_hold_out_points_it_was_not_set_on():
+    """The factor holds 95 % of the points it was set on by construction; on points it was
+    not set on it must hold nearly as often. The hold-out's two designs (the campaign's own
+    321 points and the 314 of another seed) state each other's errors: at least 90 % held in
+    every quantity, both ways (fiterr38 measured 92.5-97.5 %; the table per region it
+    replaced held mu on 79-82 % of them)."""
+    from webfem.models import fit_stated as fs
+    loc = fitted.coefficients()["local"]
+    X, E = loc["local_x"], loc["local_errors"]
+    halves = (np.arange(len(E)) < 321, np.arange(len(E)) >= 321)
+    for fit_on, check_on in (halves, halves[::-1]):
+        half = fs.calibrate(X[fit_on], E[fit_on], loc["local_scales"], loc["local_metric"],
+                            k=int(loc["local_k"]))
+        held = (E[check_on] <= fs.stated(X[check_on], half)).mean(axis=0)
+        assert np.all(held >= 0.90), held
