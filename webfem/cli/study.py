@@ -86,13 +86,12 @@ def run(args) -> int:
     if case.grooved:
         # every study sets the FE models beside the closed form on the smooth-roller film
         from ..errors import InputError
-        r = case.roller
+        from ..physics.validity import groove_keys_text
         raise InputError(
             f"webfem study {args.kind} studies smooth rollers (it compares the closed form, "
-            f"fe1d and fe2d); {args.case} is grooved (roller.groove_pitch = "
-            f"{r.groove_pitch:g}, roller.groove_width = {r.groove_width:g}, "
-            f"roller.groove_depth = {r.groove_depth:g} m): --set roller.groove_width=0 "
-            "for its smooth roller, or `webfem grooves` / `webfem sweep` for the grooved one")
+            f"fe1d and fe2d); {args.case} is grooved ({groove_keys_text(case)}): --set "
+            "roller.groove_width=0 for its smooth roller, or `webfem grooves` / `webfem "
+            "sweep` for the grooved one")
     out = output_folder(args.out, "--out")
     if not args.quiet:
         print(f"webfem study {args.kind}: {args.case}{' (quick)' if args.quick else ''}",

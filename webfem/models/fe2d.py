@@ -372,7 +372,7 @@ def _cell_on_mesh(case: Case, prm, options: FE2DOptions, cell, u, problem):
             if not info.converged or admissibility(case, on, uc, prm):
                 continue
         moved = problem if np.array_equal(X, problem.X) else problem.variant(X=X)
-        return moved, on, uc, X is tried[0] and planned.size > problem.X.size
+        return moved, on, uc, X is planned      # in ``tried`` only where it is finer
     return None
 
 

@@ -535,8 +535,8 @@ def solve_case(case: Case, options: FittedOptions, *, initial: Result | None = N
 
 
 def _basis(fit: dict, region: int) -> str:
-    if unstated(fit):
-        return f"fit: {unstated(fit)}; {fit['info']}"
+    if none := unstated(fit):
+        return f"fit: {none}; {fit['info']}"
     local = fit.get("local")
     if local is None:
         return (f"fit: 95th percentile of the hold-out errors against fe2d in its region, "

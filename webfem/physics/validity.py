@@ -114,16 +114,21 @@ def answer_warnings(case, h_min: float, tail: str | None = None) -> list[str]:
                         smooth_roller_warning(case)) if w]
 
 
+def groove_keys_text(case) -> str:
+    """The groove keys of ``case`` as messages show them: ``roller.groove_pitch = 0.00127,
+    roller.groove_width = 0.00025, roller.groove_depth = 0.00025 m``."""
+    r = case.roller
+    return (f"roller.groove_pitch = {r.groove_pitch:g}, roller.groove_width = "
+            f"{r.groove_width:g}, roller.groove_depth = {r.groove_depth:g} m")
+
+
 def grooves_text(case, model: str) -> str | None:
     """Why ``model`` (as messages name it) cannot solve ``case``: a grooved roller, which only
     the 2-D film model (fe2d) solves; None for a smooth roller."""
     if not case.grooved:
         return None
-    r = case.roller
-    return (f"{model} cannot solve a grooved roller (roller.groove_pitch = {r.groove_pitch:g}, "
-            f"roller.groove_width = {r.groove_width:g}, roller.groove_depth = "
-            f"{r.groove_depth:g} m): use model fe2d or auto, or set roller.groove_width = 0 "
-            "for a smooth roller")
+    return (f"{model} cannot solve a grooved roller ({groove_keys_text(case)}): use model "
+            "fe2d or auto, or set roller.groove_width = 0 for a smooth roller")
 
 
 def grooves_refused(case, model: str) -> None:
